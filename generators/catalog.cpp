@@ -1,0 +1,40 @@
+#include "catalog.h"
+
+#include "common/errors.h"
+
+namespace bsp {
+
+const std::vector<GeneratorInfo>& generators() {
+  static const std::vector<GeneratorInfo> all = {
+      random_triangles_generator(),
+      cyclic_overlap_generator(),
+  };
+  return all;
+}
+
+const GeneratorInfo& find_generator(std::string_view name) {
+  for (const auto& g : generators())
+    if (g.name == name) return g;
+  std::string known;
+  for (const auto& g : generators()) known += (known.empty() ? "" : ", ") + g.name;
+  throw UsageError("unknown scene '" + std::string(name) + "' (known: " + known + ")");
+}
+
+Scene make_scene(std::string_view name, const ParamAssignments& params) {
+  const GeneratorInfo& g = find_generator(name);
+  Scene scene;
+  scene.name = g.name;
+  scene.params = ParamSet::resolve(g.params, params, "scene " + g.name);
+  scene.polygons = g.make(scene.params);
+  return scene;
+}
+
+ParamSpec n_param(double default_n, std::string doc) {
+  return {"n", ParamSpec::Kind::Integer, std::move(doc), default_n, 1, 1e8, {}};
+}
+
+ParamSpec seed_param() {
+  return {"seed", ParamSpec::Kind::Integer, "random seed; the same seed gives the same polygons", 1, 0, 9e15, {}};
+}
+
+}  // namespace bsp

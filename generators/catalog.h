@@ -1,0 +1,37 @@
+#pragma once
+// The scene catalog: every generator by name, with its parameters and what it is for. Generators
+// are deterministic: the same name, parameters and seed give byte-identical polygons on every
+// machine and thread count (each item draws from its own stream, rng.h stream_seed).
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/params.h"
+#include "scene/scene.h"
+
+namespace bsp {
+
+struct GeneratorInfo {
+  std::string name;
+  std::string purpose;     // one line: what a user learns from this scene
+  std::string count_rule;  // exactly how the parameters map to the polygon count
+  std::vector<ParamSpec> params;
+  std::function<std::vector<Polygon>(const ParamSet&)> make;
+};
+
+const std::vector<GeneratorInfo>& generators();
+// Throws UsageError naming the known scenes.
+const GeneratorInfo& find_generator(std::string_view name);
+// Throws UsageError for an unknown scene, parameter or value.
+Scene make_scene(std::string_view name, const ParamAssignments& params);
+
+// Shared parameter specs.
+ParamSpec n_param(double default_n, std::string doc);
+ParamSpec seed_param();
+
+// One declaration per generator file.
+GeneratorInfo random_triangles_generator();
+GeneratorInfo cyclic_overlap_generator();
+
+}  // namespace bsp

@@ -1,0 +1,28 @@
+#pragma once
+// A small command-line reader: options are taken out as they are asked for, and finish() rejects
+// whatever is left, so a misspelt option is an error rather than silently ignored.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bsp::cli {
+
+class Args {
+ public:
+  explicit Args(std::vector<std::string> args) : args_(std::move(args)) {}
+
+  std::optional<std::string> option(std::string_view name);  // --name VALUE, at most once
+  std::vector<std::string> options(std::string_view name);   // --name VALUE, repeatable
+  bool flag(std::string_view name);                           // --name
+  std::string required(std::string_view name);
+  // Typed readers; a malformed value is a UsageError naming the option.
+  std::optional<long long> integer(std::string_view name, long long min, long long max);
+  std::optional<double> real(std::string_view name);
+  void finish() const;
+
+ private:
+  std::vector<std::string> args_;
+};
+
+}  // namespace bsp::cli

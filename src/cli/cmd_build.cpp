@@ -1,0 +1,38 @@
+// bspbench build: build one tree and print its metrics.
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/run_args.h"
+#include "metrics/tree_metrics.h"
+
+namespace bsp::cli {
+
+namespace {
+
+int run(Args& args) {
+  std::uint64_t seed = 1;
+  const bool json = args.flag("--json");
+  Scene scene = scene_from_args(args, seed);
+  const TreeArgs t = tree_args_from(args, seed);
+  args.finish();
+  const Tree tree = build_from_args(scene, t);
+  nlohmann::json out = describe_run(scene, t);
+  out.update(to_json(measure_tree(tree)));
+  if (json) {
+    std::cout << out.dump() << "\n";
+  } else {
+    for (const auto& [k, v] : out.items()) std::cout << k << ": " << v.dump() << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command build_command() {
+  return {"build", "(--scene NAME [--n N] [--seed S] [--scene-param k=v]... | --input FILE) --heuristic NAME "
+          "[--param k=v]... [--shape strict|coarse] [--incremental [--order given|shuffled]] [--json]",
+          "build a tree and print its metrics", run};
+}
+
+}  // namespace bsp::cli

@@ -1,0 +1,58 @@
+// bspbench heuristics / scenes: what the registries hold, with parameters and defaults.
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "catalog.h"
+#include "cli/commands.h"
+#include "split/registry.h"
+
+namespace bsp::cli {
+
+namespace {
+
+void print(const nlohmann::json& list, bool json) {
+  if (json) {
+    std::cout << list.dump(2) << "\n";
+    return;
+  }
+  for (const auto& item : list) {
+    std::cout << item["name"].get<std::string>() << ": " << item["summary"].get<std::string>() << "\n";
+    for (const auto& p : item["params"])
+      std::cout << "    " << p["name"].get<std::string>() << " = " << p["default"].dump() << "  "
+                << p["doc"].get<std::string>() << "\n";
+  }
+}
+
+int run_heuristics(Args& args) {
+  const bool json = args.flag("--json");
+  args.finish();
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& h : heuristics())
+    list.push_back({{"name", h.name}, {"summary", h.summary}, {"autopartition", h.autopartition},
+                    {"params", specs_to_json(h.params)}});
+  print(list, json);
+  return 0;
+}
+
+int run_scenes(Args& args) {
+  const bool json = args.flag("--json");
+  args.finish();
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& g : generators())
+    list.push_back({{"name", g.name}, {"summary", g.purpose}, {"count", g.count_rule},
+                    {"params", specs_to_json(g.params)}});
+  print(list, json);
+  return 0;
+}
+
+}  // namespace
+
+Command heuristics_command() {
+  return {"heuristics", "[--json]", "list the splitter heuristics with their parameters", run_heuristics};
+}
+
+Command scenes_command() {
+  return {"scenes", "[--json]", "list the scene generators with their parameters", run_scenes};
+}
+
+}  // namespace bsp::cli

@@ -1,0 +1,14 @@
+#include "cli/commands.h"
+
+namespace bsp::cli {
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> all = {
+      build_command(),
+      heuristics_command(),
+      scenes_command(),
+  };
+  return all;
+}
+
+}  // namespace bsp::cli

@@ -1,0 +1,74 @@
+#include "cli/run_args.h"
+
+#include <nlohmann/json.hpp>
+
+#include "catalog.h"
+#include "common/errors.h"
+#include "common/rng.h"
+#include "io/mesh_reader.h"
+#include "split/registry.h"
+
+namespace bsp::cli {
+
+Scene scene_from_args(Args& args, std::uint64_t& seed) {
+  const auto input = args.option("--input");
+  const auto name = args.option("--scene");
+  const auto n = args.option("--n");
+  const auto seed_value = args.integer("--seed", 0, 9'000'000'000'000'000LL);
+  const auto extra = args.options("--scene-param");
+  seed = seed_value ? static_cast<std::uint64_t>(*seed_value) : 1;
+  if (input && name) throw UsageError("give either --scene or --input, not both");
+  if (input) {
+    if (n || !extra.empty()) throw UsageError("--n and --scene-param apply to --scene, not --input");
+    return read_mesh(*input);
+  }
+  if (!name) throw UsageError("missing --scene NAME or --input FILE");
+  ParamAssignments given;
+  if (n) given.emplace_back("n", *n);
+  if (seed_value) given.emplace_back("seed", std::to_string(*seed_value));
+  for (const auto& kv : extra) given.push_back(parse_assignment(kv));
+  Scene scene = make_scene(*name, given);
+  check_scene(scene, "scene " + scene.name);
+  return scene;
+}
+
+TreeArgs tree_args_from(Args& args, std::uint64_t seed) {
+  TreeArgs t;
+  t.seed = seed;
+  t.heuristic = args.required("--heuristic");
+  for (const auto& kv : args.options("--param")) t.params.push_back(parse_assignment(kv));
+  const std::string shape = args.option("--shape").value_or("strict");
+  if (shape != "strict" && shape != "coarse") throw UsageError("--shape must be strict or coarse, not '" + shape + "'");
+  t.options.shape = shape == "coarse" ? Shape::Coarse : Shape::Strict;
+  t.options.incremental = args.flag("--incremental");
+  const auto order = args.option("--order");
+  if (order && !t.options.incremental) throw UsageError("--order applies to --incremental builds");
+  if (order && *order != "given" && *order != "shuffled")
+    throw UsageError("--order must be given or shuffled, not '" + *order + "'");
+  t.options.order = order == "shuffled" ? InsertOrder::Shuffled : InsertOrder::Given;
+  t.options.order_seed = stream_seed(seed, 0x04de5);
+  find_heuristic(t.heuristic);
+  return t;
+}
+
+Tree build_from_args(const Scene& scene, const TreeArgs& t) {
+  auto splitter = make_splitter(t.heuristic, t.params, t.seed);
+  return build_tree(scene.polygons, *splitter, t.options);
+}
+
+nlohmann::json describe_run(const Scene& scene, const TreeArgs& t) {
+  const HeuristicInfo& h = find_heuristic(t.heuristic);
+  const nlohmann::json s = scene_json(scene);
+  return {{"scene", scene.name},
+          {"scene_params", s["params"]},
+          {"scene_hash", s["hash"]},
+          {"scene_bounds", s["bounds"]},
+          {"heuristic", t.heuristic},
+          {"heuristic_params", ParamSet::resolve(h.params, t.params, h.name).to_json()},
+          {"shape", t.options.shape == Shape::Coarse ? "coarse" : "strict"},
+          {"build", t.options.incremental ? "incremental" : "recursive"},
+          {"order", t.options.order == InsertOrder::Shuffled ? "shuffled" : "given"},
+          {"seed", t.seed}};
+}
+
+}  // namespace bsp::cli

@@ -1,0 +1,51 @@
+#pragma once
+// Oriented planes: points p with dot(n, p) + d = 0, n of unit length. The front (positive)
+// half-space is where dot(n, p) + d > 0 (seed 000 §1).
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "geometry/vec3.h"
+
+namespace bsp {
+
+struct Plane {
+  Vec3 n;
+  double d = 0;
+
+  double distance(const Vec3& p) const { return dot(n, p) + d; }
+  Plane flipped() const { return {-n, -d}; }
+  bool operator==(const Plane&) const = default;
+
+  static Plane through(const Vec3& normal, const Vec3& point) {
+    const Vec3 u = normalize(normal);
+    return {u, -dot(u, point)};
+  }
+};
+
+// A pool of planes stored in pairs (ericw-tools qbsp/map.cc): index 2k holds a plane, 2k+1 its
+// flip, so orientation is the low bit and coplanarity of two pooled planes is `(a ^ b) <= 1`.
+// Identical planes (bit for bit) share an index.
+class PlanePool {
+ public:
+  static constexpr std::uint32_t flip(std::uint32_t i) { return i ^ 1u; }
+  static constexpr bool coplanar(std::uint32_t a, std::uint32_t b) { return (a ^ b) <= 1u; }
+
+  std::uint32_t add(const Plane& p);
+  const Plane& operator[](std::uint32_t i) const { return planes_[i]; }
+  std::size_t size() const { return planes_.size(); }
+  std::size_t bytes() const { return planes_.capacity() * sizeof(Plane); }
+
+ private:
+  struct Key {
+    double a, b, c, d;
+    bool operator==(const Key&) const = default;
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& k) const;
+  };
+  std::vector<Plane> planes_;
+  std::unordered_map<Key, std::uint32_t, KeyHash> index_;
+};
+
+}  // namespace bsp

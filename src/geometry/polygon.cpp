@@ -1,0 +1,108 @@
+#include "geometry/polygon.h"
+
+#include <cmath>
+
+namespace bsp {
+
+Vec3 newell_normal(const Polygon& poly) {
+  Vec3 n;
+  const auto& v = poly.verts;
+  for (std::size_t i = 0, k = v.size(); i < k; ++i) {
+    const Vec3& a = v[i].p;
+    const Vec3& b = v[(i + 1) % k].p;
+    n.x += (a.y - b.y) * (a.z + b.z);
+    n.y += (a.z - b.z) * (a.x + b.x);
+    n.z += (a.x - b.x) * (a.y + b.y);
+  }
+  return n;
+}
+
+double area(const Polygon& poly) { return 0.5 * length(newell_normal(poly)); }
+
+Vec3 centroid(const Polygon& poly) {
+  Vec3 c;
+  for (const auto& v : poly.verts) c += v.p;
+  return poly.verts.empty() ? c : c / static_cast<double>(poly.verts.size());
+}
+
+std::optional<Plane> supporting_plane(const Polygon& poly) {
+  const Vec3 n = newell_normal(poly);
+  const double len = length(n);
+  if (!(len > 0.0) || !std::isfinite(len)) return std::nullopt;
+  return Plane::through(n / len, centroid(poly));
+}
+
+double longest_edge(const Polygon& poly) {
+  double best = 0.0;
+  const auto& v = poly.verts;
+  for (std::size_t i = 0, k = v.size(); i < k; ++i) best = std::max(best, length(v[(i + 1) % k].p - v[i].p));
+  return best;
+}
+
+Side classify(const Polygon& poly, const Plane& plane, double eps) {
+  bool front = false, back = false;
+  for (const auto& v : poly.verts) {
+    const double d = plane.distance(v.p);
+    front |= d > eps;
+    back |= d < -eps;
+  }
+  if (front && back) return Side::Spanning;
+  if (front) return Side::Front;
+  if (back) return Side::Back;
+  return Side::Coplanar;
+}
+
+bool in_front_or_on(const Polygon& poly, const Plane& plane, double eps) {
+  for (const auto& v : poly.verts)
+    if (plane.distance(v.p) < -eps) return false;
+  return true;
+}
+
+bool is_sliver(const Polygon& poly, double eps) {
+  if (poly.verts.size() < 3) return true;
+  const double edge = longest_edge(poly);
+  return !(edge > 0.0) || area(poly) / edge < eps;
+}
+
+namespace {
+
+Vertex interpolate(const Vertex& a, const Vertex& b, double t) {
+  return {lerp(a.p, b.p, t), a.u + (b.u - a.u) * t, a.v + (b.v - a.v) * t};
+}
+
+// Keeps a part, or drops it as a sliver and records that.
+void keep_or_drop(Polygon&& part, double eps, std::optional<Polygon>& slot, SplitResult& out) {
+  if (is_sliver(part, eps)) {
+    ++out.dropped;
+    out.dropped_area += part.verts.size() >= 3 ? area(part) : 0.0;
+    return;
+  }
+  slot = std::move(part);
+}
+
+}  // namespace
+
+SplitResult split(const Polygon& poly, const Plane& plane, double eps) {
+  const std::size_t k = poly.verts.size();
+  std::vector<double> d(k);
+  for (std::size_t i = 0; i < k; ++i) d[i] = plane.distance(poly.verts[i].p);
+  Polygon front{{}, poly.source}, back{{}, poly.source};
+  for (std::size_t i = 0; i < k; ++i) {
+    const std::size_t j = (i + 1) % k;
+    const Vertex& a = poly.verts[i];
+    if (d[i] >= -eps) front.verts.push_back(a);
+    if (d[i] <= eps) back.verts.push_back(a);
+    // The edge crosses strictly from one side to the other: cut it where d = 0.
+    if ((d[i] > eps && d[j] < -eps) || (d[i] < -eps && d[j] > eps)) {
+      const Vertex x = interpolate(a, poly.verts[j], d[i] / (d[i] - d[j]));
+      front.verts.push_back(x);
+      back.verts.push_back(x);
+    }
+  }
+  SplitResult out;
+  keep_or_drop(std::move(front), eps, out.front, out);
+  keep_or_drop(std::move(back), eps, out.back, out);
+  return out;
+}
+
+}  // namespace bsp

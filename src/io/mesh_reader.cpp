@@ -1,0 +1,79 @@
+#include "io/mesh_reader.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "common/errors.h"
+#include "geometry/tolerance.h"
+#include "io/mesh_reader_cgal.h"
+#include "io/polygon_cleanup.h"
+
+namespace bsp {
+
+namespace {
+
+void check_readable(const std::string& path) {
+  const std::string ext = [&] {
+    std::string e = std::filesystem::path(path).extension().string();
+    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+    return e;
+  }();
+  if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
+    throw InputError(path + ": unsupported file type '" + ext + "' (expected .obj, .off, .ply or .stl)");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
+  if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": the file is empty");
+}
+
+Box soup_bounds(const std::string& path, const PolygonSoup& soup) {
+  Box b;
+  for (std::size_t i = 0; i < soup.points.size(); ++i) {
+    const Vec3 p{soup.points[i][0], soup.points[i][1], soup.points[i][2]};
+    if (!is_finite(p))
+      throw InputError(path + ": vertex " + std::to_string(i) + " has a non-finite (NaN or infinite) coordinate");
+    b.add(p);
+  }
+  return b;
+}
+
+}  // namespace
+
+Scene read_mesh(const std::string& path) {
+  check_readable(path);
+  PolygonSoup soup;
+  std::string error;
+  if (!read_polygon_soup_cgal(path, soup, error)) throw InputError(path + ": malformed mesh (" + error + ")");
+  const Tolerance tol = Tolerance::for_extent(soup_bounds(path, soup).diagonal());
+  Scene scene;
+  scene.name = "file:" + path;
+  scene.load.faces_read = soup.faces.size();
+  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
+    const auto& face = soup.faces[f];
+    Polygon poly;
+    for (auto index : face) {
+      if (index >= soup.points.size())
+        throw InputError(path + ": face " + std::to_string(f) + " refers to vertex " + std::to_string(index) +
+                         " but the file has " + std::to_string(soup.points.size()));
+      const auto& p = soup.points[index];
+      poly.verts.push_back({{p[0], p[1], p[2]}, 0, 0});
+    }
+    if (std::set<std::size_t>(face.begin(), face.end()).size() != face.size()) {
+      ++scene.load.dropped_duplicate_vertex;
+      continue;
+    }
+    append_clean_polygon(std::move(poly), tol.plane_eps, scene.polygons, scene.load);
+  }
+  for (std::uint32_t i = 0; i < scene.polygons.size(); ++i) scene.polygons[i].source = i;
+  check_scene(scene, path);
+  return scene;
+}
+
+}  // namespace bsp

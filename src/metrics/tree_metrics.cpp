@@ -1,0 +1,74 @@
+#include "metrics/tree_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+namespace bsp {
+
+namespace {
+
+void measure_shape(const Tree& tree, TreeMetrics& m) {
+  const std::size_t n = tree.nodes.size();
+  // Nodes are stored in pre-order: every parent precedes its children.
+  std::vector<std::uint32_t> depth(n, 1);
+  for (std::size_t i = 0; i < n; ++i)
+    for (auto c : {tree.nodes[i].front, tree.nodes[i].back})
+      if (c != kNull) depth[c] = depth[i] + 1;
+  std::vector<std::uint64_t> subtree(n, 0);
+  double leaf_depth_sum = 0, frag_depth_sum = 0, balance_sum = 0;
+  std::uint64_t internal = 0;
+  for (std::size_t i = n; i-- > 0;) {
+    const Node& node = tree.nodes[i];
+    const std::uint64_t f = node.front == kNull ? 0 : subtree[node.front];
+    const std::uint64_t b = node.back == kNull ? 0 : subtree[node.back];
+    subtree[i] = f + b + node.count;
+    m.max_depth = std::max(m.max_depth, depth[i]);
+    frag_depth_sum += static_cast<double>(depth[i]) * node.count;
+    if (!node.has_children()) {
+      ++m.leaves;
+      leaf_depth_sum += depth[i];
+    } else if (f + b > 0) {
+      ++internal;
+      balance_sum += std::abs(static_cast<double>(f) - static_cast<double>(b)) / static_cast<double>(f + b);
+    }
+  }
+  m.mean_depth = m.leaves ? leaf_depth_sum / static_cast<double>(m.leaves) : 0.0;
+  m.fragment_weighted_depth = m.fragments ? frag_depth_sum / static_cast<double>(m.fragments) : 0.0;
+  m.mean_balance = internal ? balance_sum / static_cast<double>(internal) : 0.0;
+}
+
+}  // namespace
+
+TreeMetrics measure_tree(const Tree& tree) {
+  TreeMetrics m;
+  m.n_input = tree.stats.n_input;
+  m.fragments = tree.fragments.size();
+  m.splits = tree.stats.splits;
+  m.dropped_input = tree.stats.dropped_input;
+  m.dropped_slivers = tree.stats.dropped_slivers;
+  m.nodes = tree.nodes.size();
+  m.bytes = tree.bytes();
+  m.build_seconds = tree.stats.build_seconds;
+  measure_shape(tree, m);
+  return m;
+}
+
+nlohmann::json to_json(const TreeMetrics& m) {
+  return {{"n_input", m.n_input},
+          {"fragments", m.fragments},
+          {"splits", m.splits},
+          {"dropped_input", m.dropped_input},
+          {"dropped_slivers", m.dropped_slivers},
+          {"nodes", m.nodes},
+          {"leaves", m.leaves},
+          {"bytes", m.bytes},
+          {"max_depth", m.max_depth},
+          {"mean_depth", m.mean_depth},
+          {"fragment_weighted_depth", m.fragment_weighted_depth},
+          {"mean_balance", m.mean_balance},
+          {"build_seconds", m.build_seconds}};
+}
+
+}  // namespace bsp

@@ -1,0 +1,135 @@
+#include "tree/build_incremental.h"
+
+#include <utility>
+
+#include "common/rng.h"
+
+namespace bsp {
+
+namespace {
+
+// The tree while it grows: node fragment lists are open-ended until freeze().
+class IncrementalBuilder {
+ public:
+  IncrementalBuilder(Tree& tree, FragmentStore& store) : tree_(tree), store_(store) {}
+
+  void insert(std::uint32_t id) {
+    if (nodes_.empty()) {
+      new_node(id);
+      return;
+    }
+    pending_.push_back({id, 0});
+    while (!pending_.empty()) {
+      auto [f, n] = pending_.back();
+      pending_.pop_back();
+      descend(f, n);
+    }
+  }
+
+  // Moves the fragments into the tree, nodes in pre-order (front child first).
+  void freeze() {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> stack;  // (scratch node, parent slot)
+    if (!nodes_.empty()) stack.push_back({0, kNull});
+    while (!stack.empty()) {
+      auto [s, parent] = stack.back();
+      stack.pop_back();
+      const auto index = static_cast<std::uint32_t>(tree_.nodes.size());
+      Node n;
+      n.plane = nodes_[s].plane;
+      n.first = static_cast<std::uint32_t>(tree_.fragments.size());
+      n.count = static_cast<std::uint32_t>(frags_[s].size());
+      for (auto id : frags_[s]) {
+        tree_.fragment_plane.push_back(store_.plane(id));
+        tree_.fragments.push_back(store_.take(id));
+      }
+      tree_.nodes.push_back(n);
+      if (parent != kNull) {
+        const bool is_front = nodes_[parent_scratch_[s]].front == s;
+        (is_front ? tree_.nodes[parent].front : tree_.nodes[parent].back) = index;
+      }
+      if (nodes_[s].back != kNull) stack.push_back({nodes_[s].back, index});
+      if (nodes_[s].front != kNull) stack.push_back({nodes_[s].front, index});
+    }
+  }
+
+ private:
+  void descend(std::uint32_t f, std::uint32_t n) {
+    if (nodes_[n].plane == kNull) {
+      add_to_leaf(f, n);
+      return;
+    }
+    const Plane& plane = tree_.planes[nodes_[n].plane];
+    switch (store_.classify(f, plane, tree_.tol.plane_eps)) {
+      case Side::Coplanar: frags_[n].push_back(f); break;
+      case Side::Front: go(f, n, true); break;
+      case Side::Back: go(f, n, false); break;
+      case Side::Spanning: {
+        const std::uint32_t support = store_.plane(f);
+        SplitResult r = split(store_.take(f), plane, tree_.tol.plane_eps);
+        ++tree_.stats.splits;
+        tree_.stats.dropped_slivers += r.dropped;
+        tree_.stats.dropped_area += r.dropped_area;
+        if (r.back) go(store_.add(std::move(*r.back), support), n, false);
+        if (r.front) go(store_.add(std::move(*r.front), support), n, true);
+        break;
+      }
+    }
+  }
+
+  void go(std::uint32_t f, std::uint32_t n, bool front) {
+    const std::uint32_t child = front ? nodes_[n].front : nodes_[n].back;
+    if (child != kNull) {
+      pending_.push_back({f, child});
+      return;
+    }
+    const std::uint32_t made = new_node(f);
+    (front ? nodes_[n].front : nodes_[n].back) = made;
+    parent_scratch_[made] = n;
+  }
+
+  std::uint32_t new_node(std::uint32_t f) {
+    const auto index = static_cast<std::uint32_t>(nodes_.size());
+    Node n;
+    n.plane = tree_.shape == Shape::Coarse ? kNull : store_.plane(f);
+    nodes_.push_back(n);
+    frags_.push_back({f});
+    parent_scratch_.push_back(kNull);
+    return index;
+  }
+
+  // Coarse leaves only: keep the convex set, or split the leaf on the newcomer's plane.
+  void add_to_leaf(std::uint32_t f, std::uint32_t n) {
+    frags_[n].push_back(f);
+    if (is_convex_set(frags_[n], store_, tree_.planes, tree_.tol.plane_eps)) return;
+    frags_[n].pop_back();
+    std::vector<std::uint32_t> old = std::move(frags_[n]);
+    frags_[n] = {};
+    nodes_[n].plane = store_.plane(f);
+    pending_.push_back({f, n});
+    for (auto it = old.rbegin(); it != old.rend(); ++it) pending_.push_back({*it, n});
+  }
+
+  Tree& tree_;
+  FragmentStore& store_;
+  std::vector<Node> nodes_;  // scratch; first/count unused until freeze()
+  std::vector<std::vector<std::uint32_t>> frags_;
+  std::vector<std::uint32_t> parent_scratch_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pending_;  // (fragment, node) to descend
+};
+
+void shuffle(std::vector<std::uint32_t>& ids, std::uint64_t seed) {
+  Rng rng(seed);
+  for (std::size_t i = ids.size(); i > 1; --i) std::swap(ids[i - 1], ids[rng.below(i)]);
+}
+
+}  // namespace
+
+void build_incremental(Tree& tree, FragmentStore& store, std::vector<std::uint32_t> ids, Splitter&,
+                       const BuildOptions& options) {
+  if (options.order == InsertOrder::Shuffled) shuffle(ids, options.order_seed);
+  IncrementalBuilder builder(tree, store);
+  for (auto id : ids) builder.insert(id);
+  builder.freeze();
+}
+
+}  // namespace bsp

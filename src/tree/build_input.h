@@ -1,0 +1,16 @@
+#pragma once
+// The part of a build shared by the recursive and incremental builders: the tolerance from the
+// input's extent, and loading the input into a FragmentStore with pooled planes.
+#include <span>
+#include <vector>
+
+#include "tree/fragment_store.h"
+#include "tree/tree.h"
+
+namespace bsp {
+
+// Sets tree.bounds, tree.tol and the input counters of tree.stats; returns the ids of the usable
+// input fragments in input order (slivers dropped and non-planar polygons fan-triangulated).
+std::vector<std::uint32_t> load_input(std::span<const Polygon> input, Tree& tree, FragmentStore& store);
+
+}  // namespace bsp

@@ -1,0 +1,41 @@
+#include "tree/fragment_store.h"
+
+namespace bsp {
+
+std::uint32_t FragmentStore::add(Polygon&& poly, std::uint32_t plane) {
+  BoundingSphere s{centroid(poly), 0.0};
+  for (const auto& v : poly.verts) s.radius = std::max(s.radius, length(v.p - s.center));
+  polys_.push_back(std::move(poly));
+  plane_.push_back(plane);
+  sphere_.push_back(s);
+  return static_cast<std::uint32_t>(polys_.size() - 1);
+}
+
+SideCounts FragmentStore::count_sides(std::span<const std::uint32_t> ids, const Plane& p, double eps) const {
+  SideCounts c;
+  for (auto id : ids) {
+    switch (classify(id, p, eps)) {
+      case Side::Front: ++c.front; break;
+      case Side::Back: ++c.back; break;
+      case Side::Coplanar: ++c.coplanar; break;
+      case Side::Spanning: ++c.spanning; break;
+    }
+  }
+  return c;
+}
+
+bool is_convex_set(std::span<const std::uint32_t> ids, const FragmentStore& frags,
+                   const PlanePool& planes, double eps) {
+  for (auto a : ids) {
+    const Plane& pa = planes[frags.plane(a)];
+    for (auto b : ids) {
+      if (a == b) continue;
+      const BoundingSphere& s = frags.sphere(b);
+      if (pa.distance(s.center) - s.radius >= -eps) continue;
+      if (!in_front_or_on(frags.poly(b), pa, eps)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace bsp

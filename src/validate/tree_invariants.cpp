@@ -1,0 +1,122 @@
+#include "validate/tree_invariants.h"
+
+#include <cmath>
+#include <vector>
+
+#include "tree/fragment_store.h"
+
+namespace bsp {
+
+namespace {
+
+class Checker {
+ public:
+  Checker(const Tree& tree, InvariantReport& report) : tree_(tree), report_(report) {}
+
+  void fail(std::string what) {
+    ++report_.violations;
+    if (report_.first_problems.size() < 10) report_.first_problems.push_back(std::move(what));
+  }
+
+  // 1 and 2 and 3: one depth-first walk keeping the oriented planes of the path.
+  void walk() {
+    const std::size_t n = tree_.nodes.size();
+    std::vector<std::uint8_t> seen(n, 0);
+    std::vector<std::uint8_t> covered(tree_.fragments.size(), 0);
+    std::vector<std::uint32_t> path;  // oriented planes: the cell is in front of each
+    struct Step { std::uint32_t node; std::uint32_t depth; std::uint32_t plane_from_parent; };
+    std::vector<Step> stack;
+    if (n) stack.push_back({0, 0, kNull});
+    while (!stack.empty()) {
+      const Step s = stack.back();
+      stack.pop_back();
+      if (s.node >= n) { fail("child index out of range"); continue; }
+      if (seen[s.node]++) { fail("node " + std::to_string(s.node) + " reached twice"); continue; }
+      path.resize(s.depth);
+      if (s.plane_from_parent != kNull) path.push_back(s.plane_from_parent);
+      const Node& node = tree_.nodes[s.node];
+      check_node_fragments(s.node, node, path, covered);
+      if (node.is_cell_leaf()) {
+        if (node.has_children()) fail("coarse leaf " + std::to_string(s.node) + " has children");
+        continue;
+      }
+      const std::uint32_t depth = static_cast<std::uint32_t>(path.size());
+      if (node.back != kNull) stack.push_back({node.back, depth, PlanePool::flip(node.plane)});
+      if (node.front != kNull) stack.push_back({node.front, depth, node.plane});
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (!seen[i]) fail("node " + std::to_string(i) + " unreachable");
+    for (std::size_t i = 0; i < covered.size(); ++i)
+      if (covered[i] != 1) fail("fragment " + std::to_string(i) + " stored " + std::to_string(covered[i]) + " times");
+  }
+
+  // 4.
+  void conservation(std::span<const Polygon> input) {
+    const auto& st = tree_.stats;
+    const std::uint64_t f = tree_.fragments.size();
+    if (st.splits + st.n_input + st.triangulated_extra != f + st.dropped_input + st.dropped_slivers)
+      fail("split identity broken: splits=" + std::to_string(st.splits) + " fragments=" + std::to_string(f));
+    double total = 0;
+    std::vector<double> per_source(input.size(), 0.0);
+    for (const auto& frag : tree_.fragments) {
+      const double a = area(frag);
+      total += a;
+      if (frag.source < per_source.size()) per_source[frag.source] += a;
+      else fail("fragment source out of range");
+    }
+    const double scale = std::max(st.input_area, 1e-300);
+    if (std::abs(total + st.dropped_area - st.input_area) > 1e-9 * scale)
+      fail("area not conserved: fragments " + std::to_string(total) + " + dropped " +
+           std::to_string(st.dropped_area) + " != input " + std::to_string(st.input_area));
+    for (std::size_t i = 0; i < input.size(); ++i) {
+      const double a = area(input[i]);
+      if (per_source[i] > a * (1 + 1e-9) + 1e-300)
+        fail("source " + std::to_string(i) + " has more fragment area than input area");
+    }
+  }
+
+ private:
+  void check_node_fragments(std::uint32_t index, const Node& node, const std::vector<std::uint32_t>& path,
+                            std::vector<std::uint8_t>& covered) {
+    const double eps = tree_.tol.plane_eps;
+    if (static_cast<std::uint64_t>(node.first) + node.count > tree_.fragments.size()) {
+      fail("node " + std::to_string(index) + " fragment range out of bounds");
+      return;
+    }
+    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+      ++covered[i];
+      const Polygon& frag = tree_.fragments[i];
+      for (auto p : path)
+        if (!in_front_or_on(frag, tree_.planes[p], eps))
+          fail("fragment " + std::to_string(i) + " at node " + std::to_string(index) + " on the wrong side of an ancestor plane");
+      if (!node.is_cell_leaf() && classify(frag, tree_.planes[node.plane], eps) != Side::Coplanar)
+        fail("fragment " + std::to_string(i) + " stored at node " + std::to_string(index) + " is not coplanar with it");
+    }
+    if (node.is_cell_leaf()) check_convex_leaf(index, node);
+  }
+
+  void check_convex_leaf(std::uint32_t index, const Node& node) {
+    const double eps = tree_.tol.plane_eps;
+    for (std::uint32_t a = node.first; a < node.first + node.count; ++a)
+      for (std::uint32_t b = node.first; b < node.first + node.count; ++b)
+        if (a != b && !in_front_or_on(tree_.fragments[b], tree_.planes[tree_.fragment_plane[a]], eps)) {
+          fail("coarse leaf " + std::to_string(index) + " is not a convex set");
+          return;
+        }
+  }
+
+  const Tree& tree_;
+  InvariantReport& report_;
+};
+
+}  // namespace
+
+InvariantReport check_tree_invariants(const Tree& tree, std::span<const Polygon> input) {
+  InvariantReport report;
+  Checker checker(tree, report);
+  checker.walk();
+  checker.conservation(input);
+  return report;
+}
+
+}  // namespace bsp

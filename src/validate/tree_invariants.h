@@ -1,0 +1,31 @@
+#pragma once
+// A reusable checker of what every BSP tree must satisfy, whatever heuristic built it:
+//  1. structure: every node is reached from the root exactly once; fragment ranges partition the
+//     fragment array;
+//  2. separation: every fragment in a node's front subtree lies in front of or on the node's plane
+//     (within plane_eps), every one in its back subtree behind or on it;
+//  3. storage: fragments stored at a strict node are coplanar with its plane; a coarse leaf holds a
+//     convex set;
+//  4. conservation: total fragment area + dropped area = input area (relative 1e-9), no source's
+//     fragments exceed its input area, and the split-count identity of BuildStats holds.
+// Cost O(sum over fragments of their depth).
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "geometry/polygon.h"
+#include "tree/tree.h"
+
+namespace bsp {
+
+struct InvariantReport {
+  std::uint64_t violations = 0;
+  std::vector<std::string> first_problems;  // up to 10, for messages
+  bool ok() const { return violations == 0; }
+};
+
+// `input` is the polygon list the tree was built from (for the per-source area check).
+InvariantReport check_tree_invariants(const Tree& tree, std::span<const Polygon> input);
+
+}  // namespace bsp

@@ -1,0 +1,86 @@
+// Classification and splitting of convex polygons: area is preserved, attributes interpolate
+// linearly, slivers are dropped and counted.
+#include <gtest/gtest.h>
+
+#include "geometry/polygon.h"
+#include "geometry/tolerance.h"
+
+using namespace bsp;
+
+namespace {
+
+Polygon unit_square() {
+  return {{{{0, 0, 0}, 0, 0}, {{1, 0, 0}, 1, 0}, {{1, 1, 0}, 1, 1}, {{0, 1, 0}, 0, 1}}, 7};
+}
+
+const double kEps = Tolerance::for_extent(1.0).plane_eps;
+
+}  // namespace
+
+TEST(Classify, FrontBackCoplanarSpanning) {
+  const Polygon sq = unit_square();
+  EXPECT_EQ(classify(sq, Plane::through({0, 0, 1}, {0, 0, -1}), kEps), Side::Front);
+  EXPECT_EQ(classify(sq, Plane::through({0, 0, 1}, {0, 0, 1}), kEps), Side::Back);
+  EXPECT_EQ(classify(sq, Plane::through({0, 0, -1}, {0, 0, 0}), kEps), Side::Coplanar);
+  EXPECT_EQ(classify(sq, Plane::through({1, 0, 0}, {0.5, 0, 0}), kEps), Side::Spanning);
+}
+
+TEST(Classify, VertexWithinToleranceCountsAsOnThePlane) {
+  Polygon sq = unit_square();
+  sq.verts[2].p.z = 0.5 * kEps;  // nearly coplanar: still coplanar
+  EXPECT_EQ(classify(sq, Plane::through({0, 0, 1}, {0, 0, 0}), kEps), Side::Coplanar);
+  sq.verts[2].p.z = 2 * kEps;
+  EXPECT_EQ(classify(sq, Plane::through({0, 0, 1}, {0, 0, 0}), kEps), Side::Front);
+}
+
+TEST(Split, PreservesAreaAndSource) {
+  const Polygon sq = unit_square();
+  const auto r = split(sq, Plane::through({1, 1, 0}, {0.7, 0.1, 0}), kEps);
+  ASSERT_TRUE(r.front && r.back);
+  EXPECT_NEAR(area(*r.front) + area(*r.back), 1.0, 1e-12);
+  EXPECT_EQ(r.front->source, 7u);
+  EXPECT_EQ(r.back->source, 7u);
+  EXPECT_EQ(r.dropped, 0);
+}
+
+TEST(Split, InterpolatesTextureCoordinatesLinearly) {
+  // On the unit square u = x and v = y, so every vertex of every part must keep that relation.
+  const auto r = split(unit_square(), Plane::through({1, 0.3, 0}, {0.37, 0.5, 0}), kEps);
+  ASSERT_TRUE(r.front && r.back);
+  for (const auto* part : {&*r.front, &*r.back})
+    for (const auto& v : part->verts) {
+      EXPECT_NEAR(v.u, v.p.x, 1e-12);
+      EXPECT_NEAR(v.v, v.p.y, 1e-12);
+    }
+}
+
+TEST(Split, PartsLieOnTheirSides) {
+  const Plane plane = Plane::through({0.2, 1, 0.1}, {0.5, 0.5, 0});
+  const auto r = split(unit_square(), plane, kEps);
+  ASSERT_TRUE(r.front && r.back);
+  EXPECT_TRUE(in_front_or_on(*r.front, plane, kEps));
+  EXPECT_TRUE(in_front_or_on(*r.back, plane.flipped(), kEps));
+}
+
+TEST(Split, SliverBelowToleranceIsDroppedAndCounted) {
+  // A diagonal plane 1.5 eps inside the corner (1,1): the square spans it, and the corner's part
+  // is a right isosceles triangle whose width (area / longest edge) is 0.75 eps: a sliver.
+  const Vec3 n = normalize(Vec3{1, 1, 0});
+  const auto r = split(unit_square(), Plane::through(n, Vec3{1, 1, 0} - n * (1.5 * kEps)), kEps);
+  ASSERT_TRUE(r.back);
+  EXPECT_FALSE(r.front);
+  EXPECT_EQ(r.dropped, 1);
+  EXPECT_NEAR(r.dropped_area, 2.25 * kEps * kEps, 1e-3 * kEps * kEps);
+  EXPECT_NEAR(area(*r.back) + r.dropped_area, 1.0, 1e-12);
+}
+
+TEST(PlanePool, StoresEachPlaneWithItsFlip) {
+  PlanePool pool;
+  const Plane p = Plane::through({0, 0, 1}, {0, 0, 2});
+  const auto a = pool.add(p);
+  EXPECT_EQ(pool.add(p), a);
+  EXPECT_EQ(pool.add(p.flipped()), PlanePool::flip(a));
+  EXPECT_TRUE(PlanePool::coplanar(a, PlanePool::flip(a)));
+  const auto b = pool.add(Plane::through({0, 0, 1}, {0, 0, 3}));
+  EXPECT_FALSE(PlanePool::coplanar(a, b));
+}
