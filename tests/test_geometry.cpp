@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "geometry/polygon.h"
+#include "geometry/polytope.h"
+
+#include <cmath>
 #include "geometry/tolerance.h"
 
 using namespace bsp;
@@ -83,4 +86,29 @@ TEST(PlanePool, StoresEachPlaneWithItsFlip) {
   EXPECT_TRUE(PlanePool::coplanar(a, PlanePool::flip(a)));
   const auto b = pool.add(Plane::through({0, 0, 1}, {0, 0, 3}));
   EXPECT_FALSE(PlanePool::coplanar(a, b));
+}
+
+TEST(ConvexPolytope, BoxVolumeAndArea) {
+  const auto box = ConvexPolytope::box({{0, 0, 0}, {1, 2, 3}});
+  EXPECT_NEAR(box.volume(), 6.0, 1e-12);
+  EXPECT_NEAR(box.surface_area(), 22.0, 1e-12);
+}
+
+TEST(ConvexPolytope, ClippingAtACornerLeavesATetrahedron) {
+  // x + y + z >= 2.5 keeps the corner (1,1,1) of the unit cube: a tetrahedron with legs 0.5.
+  const auto cube = ConvexPolytope::box({{0, 0, 0}, {1, 1, 1}});
+  const Vec3 n = normalize(Vec3{1, 1, 1});
+  const auto corner = cube.clipped(Plane::through(n, {2.5 / 3, 2.5 / 3, 2.5 / 3}), 1e-12);
+  EXPECT_NEAR(corner.volume(), 0.125 / 6, 1e-12);
+  const auto rest = cube.clipped(Plane::through(-n, {2.5 / 3, 2.5 / 3, 2.5 / 3}), 1e-12);
+  EXPECT_NEAR(rest.volume() + corner.volume(), 1.0, 1e-12);
+  // Three right triangles with legs 0.5 plus an equilateral cap with side 0.5 sqrt(2).
+  const double cap = std::sqrt(3.0) / 4 * 0.5;
+  EXPECT_NEAR(corner.surface_area(), 3 * 0.125 + cap, 1e-12);
+}
+
+TEST(ConvexPolytope, ClippingByAPlaneOutsideKeepsAllOrNothing) {
+  const auto cube = ConvexPolytope::box({{0, 0, 0}, {1, 1, 1}});
+  EXPECT_NEAR(cube.clipped(Plane::through({0, 0, 1}, {0, 0, -1}), 1e-12).volume(), 1.0, 1e-12);
+  EXPECT_TRUE(cube.clipped(Plane::through({0, 0, 1}, {0, 0, 2}), 1e-12).empty());
 }

@@ -1,0 +1,35 @@
+#pragma once
+// Bounded convex polytopes as lists of faces: the cells of a BSP tree. A cell is the scene box
+// (enlarged by a margin so that cells touching the scene's extremes keep a volume) cut by the
+// planes on the path from the root. Used by the Naylor heuristic and the expected-cost metrics
+// (Naylor, "Constructing good partitioning trees", 1993: P(child) is the child's share of the
+// parent cell's volume, or of its surface area for random lines by Crofton's formula).
+//
+// Invariant: faces are convex, planar, and ordered counter-clockwise seen from outside, so each
+// face's Newell normal points out of the polytope.
+#include <vector>
+
+#include "geometry/plane.h"
+#include "geometry/polygon.h"
+
+namespace bsp {
+
+class ConvexPolytope {
+ public:
+  ConvexPolytope() = default;
+  static ConvexPolytope box(const Box& b);
+
+  // The part in front of or on the plane (distance >= 0); eps is the on-plane tolerance.
+  ConvexPolytope clipped(const Plane& keep_front, double eps) const;
+
+  bool empty() const { return faces_.empty(); }
+  double volume() const;        // divergence theorem: (1/3) sum of area * (n . p)
+  double surface_area() const;
+  Box bounds() const;
+  const std::vector<Polygon>& faces() const { return faces_; }
+
+ private:
+  std::vector<Polygon> faces_;
+};
+
+}  // namespace bsp
