@@ -97,11 +97,23 @@ class IncrementalBuilder {
     return index;
   }
 
+  // The leaf already holds a convex set, so it stays one iff the newcomer and each member lie in
+  // front of or on each other's planes: O(k) instead of re-checking all pairs.
+  bool keeps_convex(std::uint32_t f, const std::vector<std::uint32_t>& leaf) const {
+    const double eps = tree_.tol.plane_eps;
+    const Plane& pf = tree_.planes[store_.plane(f)];
+    for (auto g : leaf)
+      if (!in_front_or_on(store_.poly(g), pf, eps) || !in_front_or_on(store_.poly(f), tree_.planes[store_.plane(g)], eps))
+        return false;
+    return true;
+  }
+
   // Coarse leaves only: keep the convex set, or split the leaf on the newcomer's plane.
   void add_to_leaf(std::uint32_t f, std::uint32_t n) {
-    frags_[n].push_back(f);
-    if (is_convex_set(frags_[n], store_, tree_.planes, tree_.tol.plane_eps)) return;
-    frags_[n].pop_back();
+    if (keeps_convex(f, frags_[n])) {
+      frags_[n].push_back(f);
+      return;
+    }
     std::vector<std::uint32_t> old = std::move(frags_[n]);
     frags_[n] = {};
     nodes_[n].plane = store_.plane(f);
