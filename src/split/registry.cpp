@@ -8,6 +8,13 @@ const std::vector<HeuristicInfo>& heuristics() {
   static const std::vector<HeuristicInfo> all = {
       first_heuristic(),
       random_heuristic(),
+      balanced_heuristic(),
+      min_relation_heuristic(),
+      weighted_heuristic(),
+      quake_heuristic(),
+      crystal_heuristic(),
+      naylor_heuristic(),
+      halving_heuristic(),
   };
   return all;
 }

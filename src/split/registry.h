@@ -33,5 +33,12 @@ std::unique_ptr<Splitter> make_splitter(std::string_view name, const ParamAssign
 // One declaration per heuristic file.
 HeuristicInfo first_heuristic();
 HeuristicInfo random_heuristic();
+HeuristicInfo balanced_heuristic();
+HeuristicInfo min_relation_heuristic();
+HeuristicInfo weighted_heuristic();
+HeuristicInfo quake_heuristic();
+HeuristicInfo crystal_heuristic();
+HeuristicInfo naylor_heuristic();
+HeuristicInfo halving_heuristic();
 
 }  // namespace bsp

@@ -1,0 +1,53 @@
+#include "split/candidates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace bsp {
+
+bool is_axial(const Plane& p) {
+  const double m = std::max({std::abs(p.n.x), std::abs(p.n.y), std::abs(p.n.z)});
+  return m >= 1.0 - kAxialNormalTolerance;
+}
+
+ParamSpec candidates_param(double default_k, const std::string& doc_suffix) {
+  return {"candidates", ParamSpec::Kind::Integer,
+          "distinct planes sampled (seeded) from the node's fragments and scored; 0 = all" + doc_suffix,
+          default_k, 0, 1e9, {}};
+}
+
+namespace {
+
+// Positions in ctx.ids of the first fragment on each distinct plane pair, ascending.
+std::vector<std::uint32_t> distinct_plane_positions(const SplitContext& ctx) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed(ctx.ids.size());
+  for (std::uint32_t i = 0; i < ctx.ids.size(); ++i) keyed[i] = {ctx.frags.plane(ctx.ids[i]) >> 1, i};
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::uint32_t> positions;
+  for (std::size_t i = 0; i < keyed.size(); ++i)
+    if (i == 0 || keyed[i].first != keyed[i - 1].first) positions.push_back(keyed[i].second);
+  std::sort(positions.begin(), positions.end());
+  return positions;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> candidate_fragments(const SplitContext& ctx, std::size_t k, Rng& rng) {
+  std::vector<std::uint32_t> positions = distinct_plane_positions(ctx);
+  if (k > 0 && k < positions.size()) {
+    // Partial Fisher-Yates: the first k entries become a uniform sample without replacement.
+    for (std::size_t i = 0; i < k; ++i) std::swap(positions[i], positions[i + rng.below(positions.size() - i)]);
+    positions.resize(k);
+    std::sort(positions.begin(), positions.end());
+  }
+  std::vector<std::uint32_t> ids(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) ids[i] = ctx.ids[positions[i]];
+  return ids;
+}
+
+SideCounts count_against(const SplitContext& ctx, std::uint32_t id) {
+  return ctx.frags.count_sides(ctx.ids, ctx.planes[ctx.frags.plane(id)], ctx.tol.plane_eps);
+}
+
+}  // namespace bsp

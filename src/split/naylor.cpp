@@ -1,0 +1,146 @@
+// `naylor`: greedy minimisation of Naylor's expected cost ("Constructing good partitioning trees",
+// Graphics Interface 1993; seed 000 §7): C(T) = 1 + P(T⁻)·C(T⁻) + P(T⁺)·C(T⁺), where P(child) is
+// the chance that a query reaching the node goes on into that child. For point location (model =
+// volume) it is the child cell's share of the parent cell's volume; for random lines or rays
+// (model = area) it is the ratio of the child cell's surface area to the parent's, by Crofton's
+// formula (the measure of lines meeting a convex body is proportional to its surface area). The
+// children's costs are unknown while building, so each candidate is scored as
+//   1 + P⁻·f(n⁻) + P⁺·f(n⁺),
+// n± = fragments on that side with spanning ones on both, f a subtree-cost estimate (`estimate`).
+// Scaling f by a constant cannot change which candidate wins (the 1 is common to all), so there is
+// no scale parameter.
+//
+// Cells are exact: the scene box enlarged by `margin` (Box::enlarged, the root cell of the
+// expected-cost metric, metrics/expected_cost.h, so at equal margins this greedily lowers what that
+// metric measures), cut by the planes on the path from the root (ctx.cell_planes), each
+// candidate's children by one more clip. The previous node's cell is cached, and the build visits
+// a child right after its parent, so most cells cost one clip; after a leaf the cell is rebuilt
+// from the box in O(depth) clips. Cost per node: O(m log m) + O(k·m)
+// classifications + k clips (2k for model = area) of a cell with O(depth) faces.
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "common/rng.h"
+#include "geometry/polytope.h"
+#include "split/candidates.h"
+#include "split/registry.h"
+
+namespace bsp {
+
+namespace {
+
+// When a cell has no measure (it can only collapse numerically, or the scene is flat and margin
+// is 0) both children are taken as equally likely.
+constexpr double kEvenProbability = 0.5;
+
+enum class Model { Volume, Area };
+enum class Estimate { NLogN, Linear, Log };
+
+struct NaylorSettings {
+  Model model;
+  Estimate estimate;
+  double margin;
+  std::uint64_t candidates;
+
+  static NaylorSettings from(const ParamSet& p) {
+    const std::string& e = p.choice("estimate");
+    return {p.choice("model") == "volume" ? Model::Volume : Model::Area,
+            e == "nlogn" ? Estimate::NLogN : (e == "linear" ? Estimate::Linear : Estimate::Log), p.real("margin"),
+            static_cast<std::uint64_t>(p.integer("candidates"))};
+  }
+};
+
+class NaylorSplitter final : public Splitter {
+ public:
+  NaylorSplitter(const NaylorSettings& s, std::uint64_t seed) : s_(s), rng_(seed) {}
+
+  bool needs_cell() const override { return true; }
+
+  SplitChoice choose(const SplitContext& ctx) override {
+    update_cell(ctx);
+    const double whole = measure(cell_);
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng_);
+    return SplitChoice::of_fragment(argmin_candidate(ctx, candidates, [&](std::uint32_t id, const SideCounts& c) {
+      const auto [p_front, p_back] = probabilities(ctx, ctx.planes[ctx.frags.plane(id)], whole);
+      return 1.0 + p_back * estimate(c.back + c.spanning) + p_front * estimate(c.front + c.spanning);
+    }));
+  }
+
+ private:
+  double measure(const ConvexPolytope& cell) const {
+    return s_.model == Model::Volume ? cell.volume() : cell.surface_area();
+  }
+
+  // P⁺ and P⁻ of a candidate plane. The two children's volumes add up to the cell's, so the volume
+  // model needs one clip; surface areas do not add up (the cut face counts on both sides).
+  std::pair<double, double> probabilities(const SplitContext& ctx, const Plane& p, double whole) const {
+    if (!(whole > 0)) return {kEvenProbability, kEvenProbability};
+    const double eps = ctx.tol.plane_eps;
+    const double front = measure(cell_.clipped(p, eps)) / whole;
+    if (s_.model == Model::Volume) return {front, 1.0 - front};
+    return {front, measure(cell_.clipped(p.flipped(), eps)) / whole};
+  }
+
+  // f(n), the cost charged for a child holding n fragments. Naylor's recursion wants the children's
+  // expected costs, which a greedy choice cannot know yet; these stand in for them:
+  //  nlogn = n·log2(n+1): a subtree over n fragments has about n nodes at depths up to ~log2 n, and
+  //    the superlinear growth charges a plane that leaves many fragments in a likely child more
+  //    than their number alone would;
+  //  linear = n: testing every fragment of the cell, what the surface area heuristic of ray-tracing
+  //    kd-trees charges (MacDonald and Booth 1990);
+  //  log = log2(n+1): the depth of a balanced subtree, the path a point query walks.
+  double estimate(std::uint32_t n) const {
+    const double x = n;
+    switch (s_.estimate) {
+      case Estimate::NLogN: return x * std::log2(x + 1);
+      case Estimate::Linear: return x;
+      case Estimate::Log: return std::log2(x + 1);
+    }
+    return x;
+  }
+
+  // Brings cell_ to the node's cell: one clip when the node is a child of the previous one,
+  // otherwise a rebuild from the enlarged scene box.
+  void update_cell(const SplitContext& ctx) {
+    const auto& want = ctx.cell_planes;
+    const bool extends = want.size() == path_.size() + 1 && std::equal(path_.begin(), path_.end(), want.begin());
+    if (extends) {
+      cell_ = cell_.clipped(ctx.planes[want.back()], ctx.tol.plane_eps);
+    } else {
+      cell_ = ConvexPolytope::box(ctx.scene_box.enlarged(s_.margin));
+      for (auto plane : want) cell_ = cell_.clipped(ctx.planes[plane], ctx.tol.plane_eps);
+    }
+    path_.assign(want.begin(), want.end());
+  }
+
+  NaylorSettings s_;
+  Rng rng_;
+  std::vector<std::uint32_t> path_;  // the planes cell_ was cut by
+  ConvexPolytope cell_;
+};
+
+}  // namespace
+
+HeuristicInfo naylor_heuristic() {
+  return {"naylor",
+          "Naylor 1993 expected cost: min 1 + P-*f(n-) + P+*f(n+), P from exact cell volume or surface area",
+          {{"model", ParamSpec::Kind::Choice,
+            "probability of entering a child: volume (point location) or area (random lines, Crofton)", 0, 0, 0,
+            {"volume", "area"}},
+           {"estimate", ParamSpec::Kind::Choice,
+            "subtree cost estimate f(n): nlogn = n*log2(n+1), linear = n (SAH-like), log = log2(n+1) (balanced depth)",
+            0, 0, 0, {"nlogn", "linear", "log"}},
+           {"margin", ParamSpec::Kind::Real,
+            "the root cell is the scene box grown by this times max(diagonal, 1) on every side (Box::enlarged, "
+            "the root cell of the expected-cost metric)",
+            0.01, 0.0, 10.0, {}},
+           candidates_param(16, "; each also costs one cell clip (two for model=area)")},
+          true,
+          [](const ParamSet& p, std::uint64_t seed) {
+            return std::make_unique<NaylorSplitter>(NaylorSettings::from(p), stream_seed(seed, 0x9a71));
+          }};
+}
+
+}  // namespace bsp

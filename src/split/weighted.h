@@ -1,0 +1,32 @@
+#pragma once
+// The weighted split/balance family (seed 000 §7): score k candidate planes sampled from the node's
+// fragments by a weighted sum and take the cheapest. `weighted` exposes the weights; the presets
+// `quake` and `crystal` (quake.cpp, crystal.cpp) are the same scorer with the constants of the
+// production tools they are named after, so each preset's constants live with their source.
+#include <cstdint>
+#include <string>
+
+#include "split/registry.h"
+
+namespace bsp {
+
+// cost = split·spanning + balance·|front − back| − coplanar·coplanar − axial·[plane is axial],
+// lower is better. front and back count whole fragments; a spanning fragment lands on both sides,
+// so counting its halves would add the same to both and leave |front − back| unchanged. coplanar
+// includes the candidate itself (a constant offset, as in qbsp's `facing`).
+struct WeightedSettings {
+  double split = 1.0;
+  double balance = 1.0;
+  double coplanar = 0.0;
+  double axial = 0.0;
+  std::uint64_t candidates = 0;  // 0 = every distinct plane
+
+  static WeightedSettings from(const ParamSet& p);
+};
+
+// A registry entry for the weighted scorer whose parameters default to `defaults`; `stream` tells
+// the presets' sampling streams apart.
+HeuristicInfo weighted_family(std::string name, std::string summary, const WeightedSettings& defaults,
+                              std::uint64_t stream);
+
+}  // namespace bsp
