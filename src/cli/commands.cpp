@@ -7,6 +7,8 @@ const std::vector<Command>& commands() {
       build_command(),
       heuristics_command(),
       scenes_command(),
+      order_command(),
+      validate_command(),
   };
   return all;
 }

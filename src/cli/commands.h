@@ -21,5 +21,7 @@ const std::vector<Command>& commands();
 Command build_command();
 Command heuristics_command();
 Command scenes_command();
+Command order_command();
+Command validate_command();
 
 }  // namespace bsp::cli

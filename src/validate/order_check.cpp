@@ -1,0 +1,209 @@
+#include "validate/order_check.h"
+
+#include <algorithm>
+#include <chrono>
+#include <iterator>
+#include <nlohmann/json.hpp>
+
+#include "common/errors.h"
+#include "tree/traverse.h"
+
+namespace bsp {
+
+namespace {
+
+// A thread's pair keys are compacted (sorted, deduplicated) once they exceed this many, which
+// bounds memory on rays that cross many fragments.
+constexpr std::size_t kCompactAt = std::size_t{1} << 22;
+
+std::uint64_t ordered_key(std::uint32_t a, std::uint32_t b) { return (std::uint64_t{a} << 32) | b; }
+std::uint64_t unordered_key(std::uint32_t a, std::uint32_t b) { return ordered_key(std::min(a, b), std::max(a, b)); }
+
+// LSD radix sort in 16-bit digits, then deduplication: the key lists run to millions per view, and
+// this is several times faster than a comparison sort there. A digit every key shares is skipped
+// (the high digits of fragment ids below 65536).
+void sort_unique(std::vector<std::uint64_t>& keys) {
+  constexpr int kDigitBits = 16;
+  constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
+  std::vector<std::uint64_t> tmp(keys.size());
+  std::vector<std::size_t> start(kBuckets + 1);
+  for (int shift = 0; shift < 64; shift += kDigitBits) {
+    std::fill(start.begin(), start.end(), 0);
+    for (std::uint64_t k : keys) ++start[((k >> shift) & (kBuckets - 1)) + 1];
+    if (std::find(start.begin(), start.end(), keys.size()) != start.end()) continue;
+    for (std::size_t b = 1; b <= kBuckets; ++b) start[b] += start[b - 1];
+    for (std::uint64_t k : keys) tmp[start[(k >> shift) & (kBuckets - 1)]++] = k;
+    keys.swap(tmp);
+  }
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+}
+
+// pos[f] = place of fragment f in the order.
+std::vector<std::uint32_t> positions(std::span<const std::uint32_t> order, std::size_t n) {
+  if (order.size() != n)
+    throw InputError("the order has " + std::to_string(order.size()) + " entries but there are " + std::to_string(n) +
+                     " fragments");
+  std::vector<std::uint32_t> pos(n, kNull);
+  for (std::uint32_t i = 0; i < order.size(); ++i) {
+    const std::uint32_t f = order[i];
+    if (f >= n) throw InputError("the order names fragment " + std::to_string(f) + " of " + std::to_string(n));
+    if (pos[f] != kNull) throw InputError("the order lists fragment " + std::to_string(f) + " twice");
+    pos[f] = i;
+  }
+  return pos;
+}
+
+// What one thread saw.
+struct Tally {
+  std::vector<std::uint64_t> checked;    // unordered keys
+  std::vector<std::uint64_t> violating;  // ordered keys (nearer, farther)
+  std::uint64_t hits = 0, ties = 0;
+
+  // Merges another thread's tally; both key lists must be sorted and free of repeats.
+  void add(const Tally& o) {
+    merge_unique(checked, o.checked);
+    merge_unique(violating, o.violating);
+    hits += o.hits;
+    ties += o.ties;
+  }
+
+  static void merge_unique(std::vector<std::uint64_t>& into, const std::vector<std::uint64_t>& from) {
+    std::vector<std::uint64_t> merged;
+    merged.reserve(into.size() + from.size());
+    std::set_union(into.begin(), into.end(), from.begin(), from.end(), std::back_inserter(merged));
+    into.swap(merged);
+  }
+};
+
+// Every non-tied pair of hits on one ray: the nearer fragment must come later in the order.
+void check_ray(const std::vector<Hit>& hits, double tie_t, const std::vector<std::uint32_t>& pos, Tally& tally) {
+  tally.hits += hits.size();
+  for (std::size_t i = 0; i < hits.size(); ++i)
+    for (std::size_t j = i + 1; j < hits.size(); ++j) {
+      if (hits[j].t - hits[i].t <= tie_t) {
+        ++tally.ties;
+        continue;
+      }
+      const std::uint32_t nearer = hits[i].fragment, farther = hits[j].fragment;
+      tally.checked.push_back(unordered_key(nearer, farther));
+      if (pos[nearer] < pos[farther]) tally.violating.push_back(ordered_key(nearer, farther));
+    }
+  if (tally.checked.size() > kCompactAt) sort_unique(tally.checked);
+  if (tally.violating.size() > kCompactAt) sort_unique(tally.violating);
+}
+
+OrderCheck summarise(const Tally& all, std::uint64_t rays) {
+  OrderCheck out;
+  out.rays = rays;
+  out.hits = all.hits;
+  out.ties = all.ties;
+  out.pairs_checked = all.checked.size();
+  for (std::size_t i = 0; i < all.violating.size() && i < OrderCheck::kMaxReported; ++i)
+    out.examples.emplace_back(static_cast<std::uint32_t>(all.violating[i] >> 32),
+                              static_cast<std::uint32_t>(all.violating[i]));
+  std::vector<std::uint64_t> unordered;
+  for (std::uint64_t k : all.violating)
+    unordered.push_back(unordered_key(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k)));
+  sort_unique(unordered);
+  out.violations = unordered.size();
+  return out;
+}
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+void set_timing(ValidationReport& r, Clock::time_point start, Clock::time_point cast_start) {
+  const double cast_seconds = seconds_since(cast_start);
+  r.seconds = seconds_since(start);
+  r.rays_per_second = cast_seconds > 0.0 ? static_cast<double>(r.rays) / cast_seconds : 0.0;
+}
+
+// Adds one view's check to the report.
+void accumulate(ValidationReport& r, const OrderCheck& c, int view) {
+  ++r.views;
+  r.rays += c.rays;
+  r.hits += c.hits;
+  r.pairs_checked += c.pairs_checked;
+  r.violations += c.violations;
+  r.ties += c.ties;
+  for (const auto& [nearer, farther] : c.examples) {
+    if (r.first_problems.size() >= OrderCheck::kMaxReported) break;
+    r.first_problems.push_back("view " + std::to_string(view) + ": fragment " + std::to_string(nearer) +
+                               " is hit nearer than fragment " + std::to_string(farther) + " but drawn before it");
+  }
+}
+
+}  // namespace
+
+OrderCheck check_order(const EmbreeScene& scene, std::span<const Ray> rays,
+                       std::span<const std::uint32_t> back_to_front) {
+  const std::vector<std::uint32_t> pos = positions(back_to_front, scene.fragment_count());
+  Tally all;
+  const auto n = static_cast<std::int64_t>(rays.size());
+#pragma omp parallel
+  {
+    Tally mine;
+#pragma omp for schedule(dynamic, 64) nowait
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Ray& ray = rays[static_cast<std::size_t>(i)];
+      check_ray(scene.all_hits(ray), scene.tie_tolerance() / length(ray.dir), pos, mine);
+    }
+    // Sorting here runs on every thread; the merge below is linear.
+    sort_unique(mine.checked);
+    sort_unique(mine.violating);
+#pragma omp critical(bsp_order_check_merge)
+    all.add(mine);
+  }
+  return summarise(all, rays.size());
+}
+
+ValidationReport validate_tree(const Tree& tree, const ValidationSettings& settings) {
+  const auto start = Clock::now();
+  ValidationReport r;
+  const EmbreeScene scene(tree.fragments, settings.tie_relative);
+  r.fragments = tree.fragments.size();
+  r.tie_tolerance = scene.tie_tolerance();
+  const auto cast_start = Clock::now();
+  const std::vector<Vec3> eyes = validation_eyes(tree.bounds, settings.views);
+  for (std::size_t v = 0; v < eyes.size(); ++v) {
+    const auto order = visibility_order(tree, eyes[v], Order::BackToFront);
+    const auto rays = validation_rays(tree.fragments, tree.bounds, eyes[v], settings);
+    accumulate(r, check_order(scene, rays, order), static_cast<int>(v));
+  }
+  set_timing(r, start, cast_start);
+  return r;
+}
+
+ValidationReport validate_order(std::span<const Polygon> polys, const Vec3& eye,
+                                std::span<const std::uint32_t> order, const ValidationSettings& settings) {
+  const auto start = Clock::now();
+  ValidationReport r;
+  const EmbreeScene scene(polys, settings.tie_relative);
+  r.fragments = polys.size();
+  r.tie_tolerance = scene.tie_tolerance();
+  Box box;
+  for (const auto& p : polys)
+    for (const auto& v : p.verts) box.add(v.p);
+  const auto cast_start = Clock::now();
+  const auto rays = validation_rays(polys, box, eye, settings);
+  accumulate(r, check_order(scene, rays, order), 0);
+  set_timing(r, start, cast_start);
+  return r;
+}
+
+nlohmann::json to_json(const ValidationReport& r) {
+  return {{"views", r.views},
+          {"fragments", r.fragments},
+          {"rays", r.rays},
+          {"hits", r.hits},
+          {"pairs_checked", r.pairs_checked},
+          {"violations", r.violations},
+          {"ties", r.ties},
+          {"tie_tolerance", r.tie_tolerance},
+          {"seconds", r.seconds},
+          {"rays_per_second", r.rays_per_second},
+          {"first_problems", r.first_problems}};
+}
+
+}  // namespace bsp

@@ -1,0 +1,68 @@
+#pragma once
+// Checking back-to-front visibility orders against Embree (issue 2, items 7 and 8).
+//
+// The rule: along any ray from the eye, a fragment hit nearer must be drawn after every fragment
+// hit farther away. For each ray, every pair of hits that is not a tie (embree_scene.h) is checked;
+// a pair drawn in the wrong order is a violation. Pairs are counted as distinct unordered fragment
+// pairs, so one wrongly ordered pair seen by many rays counts once per view.
+//
+// Deterministic: rays are cast in parallel (rtcIntersect1 on a committed scene is thread-safe),
+// but every count is a sum or a set size, the same on any thread count.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "tree/tree.h"
+#include "validate/embree_scene.h"
+#include "validate/view_rays.h"
+
+namespace bsp {
+
+struct OrderCheck {
+  std::uint64_t rays = 0;
+  std::uint64_t hits = 0;           // fragment hits over all rays
+  std::uint64_t pairs_checked = 0;  // distinct unordered fragment pairs compared on some ray
+  std::uint64_t violations = 0;     // distinct unordered fragment pairs drawn in the wrong order
+  std::uint64_t ties = 0;           // hit pairs within the tie tolerance, not judged (counted per ray)
+  // Up to kMaxReported violating pairs as (nearer, farther) fragment ids, smallest first.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> examples;
+
+  static constexpr std::size_t kMaxReported = 10;
+};
+
+// `back_to_front` must hold every fragment of the scene exactly once; throws InputError otherwise.
+OrderCheck check_order(const EmbreeScene& scene, std::span<const Ray> rays,
+                       std::span<const std::uint32_t> back_to_front);
+
+struct ValidationReport {
+  int views = 0;
+  std::uint64_t fragments = 0;
+  std::uint64_t rays = 0;
+  std::uint64_t hits = 0;
+  std::uint64_t pairs_checked = 0;  // summed over views
+  std::uint64_t violations = 0;     // summed over views
+  std::uint64_t ties = 0;
+  double tie_tolerance = 0.0;    // world units
+  double seconds = 0.0;          // wall time, Embree scene build included
+  double rays_per_second = 0.0;  // rays / time spent making, casting and checking them
+  std::vector<std::string> first_problems;  // up to OrderCheck::kMaxReported, for messages
+
+  bool ok() const { return violations == 0; }
+};
+
+// Every view of validation_eyes(tree.bounds, settings.views), each checking the tree's own
+// back-to-front traversal from that eye.
+ValidationReport validate_tree(const Tree& tree, const ValidationSettings& settings = {});
+
+// One eye and an arbitrary order of arbitrary polygons (a depth sort, an order read from a file).
+// The ray set is validation_rays over the polygons' bounding box.
+ValidationReport validate_order(std::span<const Polygon> polys, const Vec3& eye,
+                                std::span<const std::uint32_t> order, const ValidationSettings& settings = {});
+
+nlohmann::json to_json(const ValidationReport& report);
+
+}  // namespace bsp

@@ -1,0 +1,299 @@
+// Visibility orders checked against Embree: the Embree all-hits caster itself, the deterministic
+// eyes, BSP orders of every heuristic, shape and build mode passing, wrong orders (reversed, centroid
+// depth sort) caught, and the files written by `bspbench order` holding a valid order.
+#include <gtest/gtest.h>
+#include <omp.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "catalog.h"
+#include "common/errors.h"
+#include "split/registry.h"
+#include "tree/build.h"
+#include "tree/traverse.h"
+#include "validate/order_check.h"
+#include "validate/tree_invariants.h"
+
+using namespace bsp;
+
+namespace {
+
+Polygon square(double z, double x0, std::uint32_t source) {
+  return {{{{x0, 0, z}, 0, 0}, {{x0 + 1, 0, z}, 1, 0}, {{x0 + 1, 1, z}, 1, 1}, {{x0, 1, z}, 0, 1}}, source};
+}
+
+Tree build(const Scene& scene, std::string_view heuristic, BuildOptions opts = {}) {
+  auto splitter = make_splitter(heuristic, {}, 1);
+  return build_tree(scene.polygons, *splitter, opts);
+}
+
+// Small grids keep the tests fast; the fragment sample rays still probe every fragment.
+ValidationSettings quick(int views) {
+  ValidationSettings s;
+  s.views = views;
+  s.grid = 24;
+  s.cube_grid = 10;
+  return s;
+}
+
+std::string first_problem(const ValidationReport& r) {
+  return r.first_problems.empty() ? std::string("none") : r.first_problems.front();
+}
+
+// Input polygons sorted by the distance of their centroid from the eye, farthest first: the
+// painter's algorithm without splitting, which cyclic overlaps defeat.
+std::vector<std::uint32_t> centroid_sort(const std::vector<Polygon>& polys, const Vec3& eye) {
+  std::vector<std::uint32_t> order(polys.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return length(centroid(polys[a]) - eye) > length(centroid(polys[b]) - eye);
+  });
+  return order;
+}
+
+}  // namespace
+
+TEST(EmbreeScene, AllHitsSeeThroughEverythingSortedAndOncePerFragment) {
+  // Two unit squares stacked at z = 0 and z = 1 (fan-triangulated along a diagonal), a third one
+  // beside the first sharing its edge x = 1.
+  const std::vector<Polygon> polys = {square(1, 0, 0), square(0, 0, 1), square(0, 1, 2)};
+  const EmbreeScene scene(polys);
+  // Straight up through the diagonal x = y, where both fan triangles of each square meet.
+  const Ray up{{0.5, 0.5, -1}, {0, 0, 2}};
+  const auto hits = scene.all_hits(up);
+  ASSERT_EQ(hits.size(), 2u);
+  EXPECT_EQ(hits[0].fragment, 1u);
+  EXPECT_DOUBLE_EQ(hits[0].t, 0.5);
+  EXPECT_EQ(hits[1].fragment, 0u);
+  EXPECT_DOUBLE_EQ(hits[1].t, 1.0);
+  const auto first = scene.first_hit(up);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->fragment, 1u);
+  // Through the edge x = 1 shared by squares 1 and 2 (a tie at t = 1), then the edge of square 0.
+  const auto edge = scene.all_hits({{1.0, 0.3, -1}, {0, 0, 1}});
+  ASSERT_EQ(edge.size(), 3u);
+  EXPECT_LE(std::abs(edge[0].t - edge[1].t), scene.tie_tolerance());
+  EXPECT_EQ(edge[0].fragment + edge[1].fragment, 3u);
+  EXPECT_EQ(edge[2].fragment, 0u);
+  EXPECT_FALSE(scene.first_hit({{5, 5, -1}, {0, 0, 1}}).has_value());
+}
+
+TEST(EmbreeScene, AGrazingNearMissAtASharedEdgeIsNotAHit) {
+  // b: the unit square on z = 0. a: a strip rising at 60 degrees from b's edge x = 1. The eye sits
+  // 1e-5 off a's plane, below z = 0, so rays to b's points just short of the edge run almost inside
+  // a's plane: Embree's float triangles of a are within rounding of those rays, but in exact
+  // arithmetic the rays cross a's plane outside a. Taking Embree's candidate at that crossing would
+  // put a in front of b on the ray (the failure this test guards against: a "hit" far from a).
+  const double c = std::cos(M_PI / 3), s = std::sin(M_PI / 3);
+  const Polygon b = square(0, 0, 0);
+  const Polygon a{{{{1, 0, 0}, 0, 0}, {{1 + 0.5 * c, 0, 0.5 * s}, 0, 0}, {{1 + 0.5 * c, 1, 0.5 * s}, 0, 0},
+                   {{1, 1, 0}, 0, 0}},
+                  1};
+  const Vec3 n_a{-s, 0, c};
+  const Vec3 eye = Vec3{1 - 2 * c, 0.5, -2 * s} - n_a * 1e-5;
+  const std::vector<Polygon> polys = {b, a};
+  const EmbreeScene scene(polys);
+  std::vector<Ray> rays;
+  for (double delta : {1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4})
+    for (double y : {0.2, 0.5, 0.8}) {
+      const Ray ray{eye, Vec3{1 - delta, y, 0} - eye};
+      const auto hits = scene.all_hits(ray);
+      ASSERT_EQ(hits.size(), 1u) << "delta " << delta << " y " << y;
+      EXPECT_EQ(hits[0].fragment, 0u);
+      rays.push_back(ray);
+    }
+  // A BSP on b's plane draws a (in front of it, the far side from this eye) first.
+  const std::vector<std::uint32_t> a_then_b = {1, 0};
+  EXPECT_EQ(check_order(scene, rays, a_then_b).violations, 0u);
+}
+
+TEST(EmbreeScene, CheckOrderRejectsAnOrderThatIsNotAPermutation) {
+  const std::vector<Polygon> polys = {square(1, 0, 0), square(0, 0, 1)};
+  const EmbreeScene scene(polys);
+  const std::vector<Ray> rays = {{{0.5, 0.5, -1}, {0, 0, 1}}};
+  const std::vector<std::uint32_t> repeated = {0, 0}, short_order = {0}, out_of_range = {0, 2};
+  EXPECT_THROW(check_order(scene, rays, repeated), InputError);
+  EXPECT_THROW(check_order(scene, rays, short_order), InputError);
+  EXPECT_THROW(check_order(scene, rays, out_of_range), InputError);
+  // From below, square 1 (z = 0) is nearer: it must be drawn last.
+  const std::vector<std::uint32_t> right = {0, 1}, wrong = {1, 0};
+  EXPECT_EQ(check_order(scene, rays, right).violations, 0u);
+  const OrderCheck bad = check_order(scene, rays, wrong);
+  EXPECT_EQ(bad.violations, 1u);
+  ASSERT_EQ(bad.examples.size(), 1u);
+  EXPECT_EQ(bad.examples[0], std::make_pair(1u, 0u));
+}
+
+TEST(ValidationEyes, AreDeterministicAndAlternateOutsideAndInsideTheBox) {
+  const Box box{{0, 0, 0}, {2, 1, 3}};
+  const auto eyes = validation_eyes(box, 7);
+  ASSERT_EQ(eyes.size(), 7u);
+  EXPECT_EQ(eyes, validation_eyes(box, 7));
+  for (std::size_t k = 0; k < eyes.size(); ++k) EXPECT_EQ(box.contains(eyes[k]), k % 2 == 1) << "eye " << k;
+  // A flat box still gets inside eyes off its plane.
+  const auto flat = validation_eyes(Box{{0, 0, 0}, {1, 1, 0}}, 2);
+  EXPECT_NE(flat[1].z, 0.0);
+}
+
+class FoundationOrders : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TEST_P(FoundationOrders, HaveNoViolationsFromAnyView) {
+  const auto& [heuristic, scene_name] = GetParam();
+  const Scene scene = make_scene(scene_name, {{"n", "300"}, {"seed", "3"}});
+  const Tree tree = build(scene, heuristic);
+  const ValidationReport r = validate_tree(tree, quick(6));
+  EXPECT_EQ(r.views, 6);
+  EXPECT_GT(r.pairs_checked, 0u);
+  EXPECT_EQ(r.violations, 0u) << first_problem(r);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, FoundationOrders,
+                         ::testing::Combine(::testing::Values("first", "random"),
+                                            ::testing::Values("random-triangles", "cyclic-overlap")));
+
+TEST(WrongOrders, ReversedBspOrderIsCaught) {
+  const Scene scene = make_scene("cyclic-overlap", {{"n", "300"}, {"seed", "3"}});
+  const Tree tree = build(scene, "random");
+  for (const Vec3& eye : validation_eyes(tree.bounds, 2)) {
+    auto order = visibility_order(tree, eye, Order::BackToFront);
+    ASSERT_EQ(validate_order(tree.fragments, eye, order, quick(1)).violations, 0u);
+    std::reverse(order.begin(), order.end());
+    EXPECT_GT(validate_order(tree.fragments, eye, order, quick(1)).violations, 0u);
+  }
+}
+
+TEST(WrongOrders, CentroidDepthSortOfCyclicOverlapsIsCaught) {
+  const Scene scene = make_scene("cyclic-overlap", {{"n", "300"}, {"seed", "3"}});
+  const Box box = bounds(scene);
+  for (const Vec3& eye : validation_eyes(box, 2)) {
+    const ValidationReport r = validate_order(scene.polygons, eye, centroid_sort(scene.polygons, eye), quick(1));
+    EXPECT_GT(r.violations, 0u);
+  }
+}
+
+TEST(WrongOrders, CountsAreTheSameOnOneAndTwoThreads) {
+  const Scene scene = make_scene("random-triangles", {{"n", "300"}, {"seed", "5"}});
+  const Tree tree = build(scene, "first");
+  const EmbreeScene embree(tree.fragments);
+  const Vec3 eye = validation_eyes(tree.bounds, 1)[0];
+  auto order = visibility_order(tree, eye, Order::BackToFront);
+  std::reverse(order.begin(), order.end());
+  const auto rays = validation_rays(tree.fragments, tree.bounds, eye, quick(1));
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const OrderCheck one = check_order(embree, rays, order);
+  omp_set_num_threads(2);
+  const OrderCheck two = check_order(embree, rays, order);
+  omp_set_num_threads(threads);
+  EXPECT_GT(one.violations, 0u);
+  EXPECT_EQ(one.hits, two.hits);
+  EXPECT_EQ(one.pairs_checked, two.pairs_checked);
+  EXPECT_EQ(one.violations, two.violations);
+  EXPECT_EQ(one.ties, two.ties);
+  EXPECT_EQ(one.examples, two.examples);
+}
+
+// --- every registered heuristic, shape and build mode
+
+enum class Mode { Recursive, IncrementalGiven, IncrementalShuffled };
+
+class EveryHeuristic : public ::testing::TestWithParam<std::tuple<std::string, Shape, Mode>> {};
+
+TEST_P(EveryHeuristic, TreesPassInvariantsAndTheirOrdersHaveNoViolations) {
+  const auto& [scene_name, shape, mode] = GetParam();
+  const Scene scene = make_scene(scene_name, {{"n", "120"}, {"seed", "4"}});
+  BuildOptions opts{.shape = shape,
+                    .incremental = mode != Mode::Recursive,
+                    .order = mode == Mode::IncrementalShuffled ? InsertOrder::Shuffled : InsertOrder::Given,
+                    .order_seed = 7};
+  for (const HeuristicInfo& h : heuristics()) {
+    SCOPED_TRACE("heuristic " + h.name);
+    const Tree tree = build(scene, h.name, opts);
+    const InvariantReport inv = check_tree_invariants(tree, scene.polygons);
+    EXPECT_TRUE(inv.ok()) << (inv.first_problems.empty() ? "" : inv.first_problems.front());
+    const ValidationReport r = validate_tree(tree, quick(4));
+    EXPECT_EQ(r.violations, 0u) << first_problem(r);
+  }
+}
+
+std::string registry_case_name(const ::testing::TestParamInfo<EveryHeuristic::ParamType>& info) {
+  static const char* const kModes[] = {"recursive", "incremental_given", "incremental_shuffled"};
+  std::string scene = std::get<0>(info.param);
+  std::replace(scene.begin(), scene.end(), '-', '_');
+  return scene + (std::get<1>(info.param) == Shape::Strict ? "_strict_" : "_coarse_") +
+         kModes[static_cast<int>(std::get<2>(info.param))];
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Registry, EveryHeuristic,
+    ::testing::Combine(::testing::Values("random-triangles", "cyclic-overlap", "coplanar-heavy"),
+                       ::testing::Values(Shape::Strict, Shape::Coarse),
+                       ::testing::Values(Mode::Recursive, Mode::IncrementalGiven, Mode::IncrementalShuffled)),
+    registry_case_name);
+
+// --- the files of `bspbench order`, checked independently
+
+namespace {
+
+// Polygons of an OBJ written by `bspbench order`: face k becomes polygon k.
+std::vector<Polygon> read_obj_faces(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<Vec3> points;
+  std::vector<Polygon> faces;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream s(line);
+    std::string tag;
+    s >> tag;
+    if (tag == "v") {
+      Vec3 p;
+      s >> p.x >> p.y >> p.z;
+      points.push_back(p);
+    } else if (tag == "f") {
+      Polygon poly;
+      poly.source = static_cast<std::uint32_t>(faces.size());
+      for (std::size_t index; s >> index;) poly.verts.push_back({points.at(index - 1), 0, 0});
+      faces.push_back(std::move(poly));
+    }
+  }
+  return faces;
+}
+
+std::filesystem::path fresh_temp_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("bspbench_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST(OrderCommand, WritesEveryFragmentOnceInAnOrderEmbreeAccepts) {
+  const auto dir = fresh_temp_dir("order");
+  const Vec3 eye{2.31, -1.73, 3.07};
+  const std::string cmd = std::string(BSPBENCH_EXE) +
+                          " order --scene cyclic-overlap --n 150 --seed 2 --heuristic random --eye 2.31,-1.73,3.07 --out " +
+                          (dir / "run").string() + " > " + (dir / "stdout").string();
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  const std::vector<Polygon> faces = read_obj_faces(dir / "run.obj");
+  std::ifstream order_file(dir / "run.order.json");
+  const nlohmann::json j = nlohmann::json::parse(order_file);
+  EXPECT_EQ(j["eye"].get<std::vector<double>>(), (std::vector<double>{eye.x, eye.y, eye.z}));
+  const auto order = j["back_to_front"].get<std::vector<std::uint32_t>>();
+  ASSERT_EQ(order.size(), faces.size());
+  ASSERT_GE(faces.size(), 150u);
+  auto sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::uint32_t i = 0; i < sorted.size(); ++i) ASSERT_EQ(sorted[i], i) << "fragment missing or repeated";
+  const ValidationReport r = validate_order(faces, eye, order, quick(1));
+  EXPECT_GT(r.pairs_checked, 0u);
+  EXPECT_EQ(r.violations, 0u) << first_problem(r);
+  std::filesystem::remove_all(dir);
+}
