@@ -112,3 +112,13 @@ TEST(ConvexPolytope, ClippingByAPlaneOutsideKeepsAllOrNothing) {
   EXPECT_NEAR(cube.clipped(Plane::through({0, 0, 1}, {0, 0, -1}), 1e-12).volume(), 1.0, 1e-12);
   EXPECT_TRUE(cube.clipped(Plane::through({0, 0, 1}, {0, 0, 2}), 1e-12).empty());
 }
+
+TEST(Split, AdjacentVerticesWithinToleranceDoNotMakeThePartsOverlap) {
+  // A square tilted so its vertices lie at +2, +0.5, -0.5, -2 eps from the plane: it spans the plane,
+  // and the two middle vertices are within eps of it. The parts must add up to the square.
+  const double e = kEps;
+  const Polygon tilted{{{{0, 0, 2 * e}, 0, 0}, {{1, 0, 0.5 * e}, 1, 0}, {{1, 1, -2 * e}, 1, 1}, {{0, 1, -0.5 * e}, 0, 1}}, 0};
+  const auto r = split(tilted, Plane::through({0, 0, 1}, {0, 0, 0}), e);
+  const double parts = (r.front ? area(*r.front) : 0.0) + (r.back ? area(*r.back) : 0.0) + r.dropped_area;
+  EXPECT_NEAR(parts, area(tilted), 1e-12);
+}

@@ -114,6 +114,34 @@ TEST(EmbreeScene, AGrazingNearMissAtASharedEdgeIsNotAHit) {
   EXPECT_EQ(check_order(scene, rays, a_then_b).violations, 0u);
 }
 
+// a: the unit square on z = 0. A ray descends toward a with slope c and crosses z = 0 just past a's
+// edge x = 1 (inside the boundary slack, so it counts as hitting a). b: a vertical square the ray
+// crosses 1.2 tie tolerances earlier. Drawing b before a contradicts this ray by more than the
+// tie tolerance; but when the ray grazes a's plane (c = 6e-4), a's depth is uncertain by the
+// slack divided by c, so the pair is a tie. A steep ray (c = 0.5) leaves no such doubt.
+std::uint64_t grazing_pair_violations(double c) {
+  const double delta = 0.5e-8;  // well inside kInsideRelative × diagonal (≈ 1.4e-8)
+  const double t_a = 2 + delta;
+  const Vec3 origin{-1, 0.5, c * t_a}, dir{1, 0, -c};
+  const Polygon a = square(0, 0, 0);
+  const auto b_at = [&](double t_b) {
+    const double x = -1 + t_b, z = origin.z - c * t_b;
+    return Polygon{{{{x, 0, z / 2}, 0, 0}, {{x, 1, z / 2}, 0, 0}, {{x, 1, 0.1}, 0, 0}, {{x, 0, 0.1}, 0, 0}}, 1};
+  };
+  const double tie_t = EmbreeScene(std::vector<Polygon>{a, b_at(t_a)}).tie_tolerance() / length(dir);
+  const std::vector<Polygon> polys = {a, b_at(t_a - 1.2 * tie_t)};
+  const EmbreeScene scene(polys);
+  const std::vector<Ray> rays = {{origin, dir}};
+  EXPECT_EQ(scene.all_hits(rays[0]).size(), 2u);
+  const std::vector<std::uint32_t> b_then_a = {1, 0};
+  return check_order(scene, rays, b_then_a).violations;
+}
+
+TEST(EmbreeScene, AHitGrazingItsPlaneTiesWithinItsDepthUncertaintyButASteepOneIsCaught) {
+  EXPECT_EQ(grazing_pair_violations(6e-4), 0u);
+  EXPECT_EQ(grazing_pair_violations(0.5), 1u);
+}
+
 TEST(EmbreeScene, CheckOrderRejectsAnOrderThatIsNotAPermutation) {
   const std::vector<Polygon> polys = {square(1, 0, 0), square(0, 0, 1)};
   const EmbreeScene scene(polys);

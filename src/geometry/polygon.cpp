@@ -83,6 +83,9 @@ void keep_or_drop(Polygon&& part, double eps, std::optional<Polygon>& slot, Spli
 }  // namespace
 
 SplitResult split(const Polygon& poly, const Plane& plane, double eps) {
+  // eps decided that the polygon spans the plane; the cut itself goes by the true sign of each
+  // distance, so the two parts partition the polygon exactly. (Sending every vertex within eps to
+  // both parts would make them overlap wherever two such vertices are adjacent.)
   const std::size_t k = poly.verts.size();
   std::vector<double> d(k);
   for (std::size_t i = 0; i < k; ++i) d[i] = plane.distance(poly.verts[i].p);
@@ -90,10 +93,9 @@ SplitResult split(const Polygon& poly, const Plane& plane, double eps) {
   for (std::size_t i = 0; i < k; ++i) {
     const std::size_t j = (i + 1) % k;
     const Vertex& a = poly.verts[i];
-    if (d[i] >= -eps) front.verts.push_back(a);
-    if (d[i] <= eps) back.verts.push_back(a);
-    // The edge crosses strictly from one side to the other: cut it where d = 0.
-    if ((d[i] > eps && d[j] < -eps) || (d[i] < -eps && d[j] > eps)) {
+    if (d[i] >= 0) front.verts.push_back(a);
+    if (d[i] <= 0) back.verts.push_back(a);
+    if ((d[i] > 0 && d[j] < 0) || (d[i] < 0 && d[j] > 0)) {
       const Vertex x = interpolate(a, poly.verts[j], d[i] / (d[i] - d[j]));
       front.verts.push_back(x);
       back.verts.push_back(x);

@@ -45,7 +45,8 @@ struct SplitResult {
   double dropped_area = 0.0;  // their total area
 };
 
-// Splits a polygon classified Spanning; both parts keep `source`. Each part is convex.
+// Splits a polygon classified Spanning; both parts keep `source`. Each part is convex, and the
+// parts partition the polygon: vertices go by the exact sign of their distance.
 SplitResult split(const Polygon& poly, const Plane& plane, double eps);
 bool is_sliver(const Polygon& poly, double eps);
 

@@ -130,7 +130,7 @@ struct EmbreeScene::Impl {
   void store(std::span<const Polygon> polys);
   void build(double grow);
   std::vector<unsigned> candidates(const Ray& ray) const;
-  std::optional<double> exact_hit(const Ray& ray, std::uint32_t f) const;
+  std::optional<Hit> exact_hit(const Ray& ray, std::uint32_t f) const;
   std::vector<Hit> hits(const Ray& ray) const;
 };
 
@@ -208,7 +208,7 @@ std::vector<unsigned> EmbreeScene::Impl::candidates(const Ray& ray) const {
 }
 
 // The double-precision decision (header, step 2).
-std::optional<double> EmbreeScene::Impl::exact_hit(const Ray& ray, std::uint32_t f) const {
+std::optional<Hit> EmbreeScene::Impl::exact_hit(const Ray& ray, std::uint32_t f) const {
   const Plane& p = plane[f];
   const double denom = dot(p.n, ray.dir);
   if (denom == 0.0) return std::nullopt;
@@ -223,7 +223,7 @@ std::optional<double> EmbreeScene::Impl::exact_hit(const Ray& ray, std::uint32_t
     // Signed distance from the edge's line within the plane, positive inside.
     if (len > 0.0 && dot(cross(e, x - a), p.n) < -inside_slack * len) return std::nullopt;
   }
-  return t;
+  return Hit{t, f, inside_slack / std::abs(denom)};
 }
 
 std::vector<Hit> EmbreeScene::Impl::hits(const Ray& ray) const {
@@ -235,7 +235,7 @@ std::vector<Hit> EmbreeScene::Impl::hits(const Ray& ray) const {
   frags.erase(std::unique(frags.begin(), frags.end()), frags.end());
   std::vector<Hit> out;
   for (std::uint32_t f : frags)
-    if (const auto t = exact_hit(ray, f)) out.push_back({*t, f});
+    if (const auto hit = exact_hit(ray, f)) out.push_back(*hit);
   std::sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) { return a.t != b.t ? a.t < b.t : a.fragment < b.fragment; });
   return out;
 }

@@ -33,11 +33,13 @@
 
 namespace bsp {
 
-// Ties: hits closer along a ray than kTieRelative × (diagonal of the fragments' bounding box).
-// Hit distances are exact up to the boundary slack kInsideRelative and the fragments' own planarity
-// tolerance (plane_eps = 1e-9 diagonals), both divided by the sine of the angle between the ray and
-// the surfaces near the hit. 1e-5 absorbs that down to sines of 1e-3 while staying far below any
-// depth separation a scene means to have.
+// Ties: hits closer along a ray than kTieRelative × (diagonal of the fragments' bounding box) plus
+// both hits' own depth uncertainty (Hit::slack). A hit's depth is exact up to the boundary slack
+// kInsideRelative and the fragments' planarity tolerance (plane_eps = 1e-9 diagonals), divided by
+// the sine of the angle between the ray and the fragment's plane: negligible for most rays, but a
+// ray grazing a plane at a sine of 6e-4 has a depth uncertain by ~2e-5 diagonals, which the fixed
+// kTieRelative alone would take for a real separation. 1e-5 stays far below any depth separation a
+// scene means to have.
 inline constexpr double kTieRelative = 1e-5;
 // Boundary slack of the double-precision hit test: ten times plane_eps, so that a ray through an
 // edge shared by two fragments (whose planes fit their vertices to within plane_eps) hits at least
@@ -55,6 +57,7 @@ struct Ray {
 struct Hit {
   double t;                // ray parameter of the hit, t >= 0
   std::uint32_t fragment;  // index into the fragments the scene was built from
+  double slack = 0.0;      // uncertainty of t: boundary slack / |plane normal · dir| (see kTieRelative)
 };
 
 class EmbreeScene {

@@ -75,12 +75,13 @@ struct Tally {
   }
 };
 
-// Every non-tied pair of hits on one ray: the nearer fragment must come later in the order.
+// Every pair of hits on one ray that is not a tie (closer than the tie tolerance plus both hits'
+// depth uncertainties): the nearer fragment must come later in the order.
 void check_ray(const std::vector<Hit>& hits, double tie_t, const std::vector<std::uint32_t>& pos, Tally& tally) {
   tally.hits += hits.size();
   for (std::size_t i = 0; i < hits.size(); ++i)
     for (std::size_t j = i + 1; j < hits.size(); ++j) {
-      if (hits[j].t - hits[i].t <= tie_t) {
+      if (hits[j].t - hits[i].t <= tie_t + hits[i].slack + hits[j].slack) {
         ++tally.ties;
         continue;
       }
