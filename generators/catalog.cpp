@@ -1,6 +1,7 @@
 #include "catalog.h"
 
 #include "common/errors.h"
+#include "mesh_scenes.h"
 
 namespace bsp {
 
@@ -8,6 +9,15 @@ const std::vector<GeneratorInfo>& generators() {
   static const std::vector<GeneratorInfo> all = {
       random_triangles_generator(),
       cyclic_overlap_generator(),
+      random_disjoint_generator(),
+      architecture_generator(),
+      city_generator(),
+      terrain_generator(),
+      sphere_field_generator(),
+      saddle_grid_generator(),
+      orthogonal_stacks_generator(),
+      coplanar_heavy_generator(),
+      near_degenerate_generator(),
   };
   return all;
 }
@@ -21,6 +31,7 @@ const GeneratorInfo& find_generator(std::string_view name) {
 }
 
 Scene make_scene(std::string_view name, const ParamAssignments& params) {
+  if (is_mesh_scene(name)) return load_mesh_scene(name, params);
   const GeneratorInfo& g = find_generator(name);
   Scene scene;
   scene.name = g.name;

@@ -23,7 +23,8 @@ struct GeneratorInfo {
 const std::vector<GeneratorInfo>& generators();
 // Throws UsageError naming the known scenes.
 const GeneratorInfo& find_generator(std::string_view name);
-// Throws UsageError for an unknown scene, parameter or value.
+// Also loads "mesh:NAME" scenes (mesh_scenes.h). Throws UsageError for an unknown scene, parameter
+// or value.
 Scene make_scene(std::string_view name, const ParamAssignments& params);
 
 // Shared parameter specs.
@@ -33,5 +34,14 @@ ParamSpec seed_param();
 // One declaration per generator file.
 GeneratorInfo random_triangles_generator();
 GeneratorInfo cyclic_overlap_generator();
+GeneratorInfo random_disjoint_generator();
+GeneratorInfo architecture_generator();
+GeneratorInfo city_generator();
+GeneratorInfo terrain_generator();
+GeneratorInfo sphere_field_generator();
+GeneratorInfo saddle_grid_generator();
+GeneratorInfo orthogonal_stacks_generator();
+GeneratorInfo coplanar_heavy_generator();
+GeneratorInfo near_degenerate_generator();
 
 }  // namespace bsp

@@ -1,8 +1,10 @@
-// bspbench build: build one tree and print its metrics.
+// bspbench build: build one tree and print its metrics, query costs included.
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "cli/commands.h"
+#include "cli/metrics_args.h"
 #include "cli/run_args.h"
 #include "metrics/tree_metrics.h"
 
@@ -15,10 +17,11 @@ int run(Args& args) {
   const bool json = args.flag("--json");
   Scene scene = scene_from_args(args, seed);
   const TreeArgs t = tree_args_from(args, seed);
+  const MetricsSettings settings = metrics_settings_from(args, seed);
   args.finish();
   const Tree tree = build_from_args(scene, t);
   nlohmann::json out = describe_run(scene, t);
-  out.update(to_json(measure_tree(tree)));
+  out.update(to_json(measure_tree(tree, settings)));
   if (json) {
     std::cout << out.dump() << "\n";
   } else {
@@ -30,9 +33,9 @@ int run(Args& args) {
 }  // namespace
 
 Command build_command() {
-  return {"build", "(--scene NAME [--n N] [--seed S] [--scene-param k=v]... | --input FILE) --heuristic NAME "
-          "[--param k=v]... [--shape strict|coarse] [--incremental [--order given|shuffled]] [--json]",
-          "build a tree and print its metrics", run};
+  static const std::string usage =
+      std::string(kSceneUsage) + " " + std::string(kTreeUsage) + " " + std::string(kMetricsUsage) + " [--json]";
+  return {"build", usage, "build a tree and print its metrics", run};
 }
 
 }  // namespace bsp::cli

@@ -4,6 +4,7 @@
 
 #include "catalog.h"
 #include "cli/commands.h"
+#include "mesh_scenes.h"
 #include "split/registry.h"
 
 namespace bsp::cli {
@@ -39,8 +40,13 @@ int run_scenes(Args& args) {
   args.finish();
   nlohmann::json list = nlohmann::json::array();
   for (const auto& g : generators())
-    list.push_back({{"name", g.name}, {"summary", g.purpose}, {"count", g.count_rule},
+    list.push_back({{"name", g.name}, {"kind", "generator"}, {"summary", g.purpose}, {"count", g.count_rule},
                     {"params", specs_to_json(g.params)}});
+  for (const auto& m : available_meshes())
+    list.push_back({{"name", std::string(kMeshPrefix) + m.name}, {"kind", "mesh"}, {"path", m.path},
+                    {"summary", "real mesh read from " + m.path},
+                    {"count", "the file's faces: convex planar ones kept, others triangulated, degenerate ones dropped"},
+                    {"params", nlohmann::json::array()}});
   print(list, json);
   return 0;
 }
@@ -52,7 +58,8 @@ Command heuristics_command() {
 }
 
 Command scenes_command() {
-  return {"scenes", "[--json]", "list the scene generators with their parameters", run_scenes};
+  return {"scenes", "[--json]", "list the scene generators with their parameters, and the fetched mesh:NAME scenes",
+          run_scenes};
 }
 
 }  // namespace bsp::cli

@@ -5,8 +5,10 @@ namespace bsp::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
       build_command(),
+      compare_command(),
       heuristics_command(),
       scenes_command(),
+      generate_command(),
       order_command(),
       validate_command(),
   };

@@ -19,8 +19,10 @@ struct Command {
 const std::vector<Command>& commands();
 
 Command build_command();
+Command compare_command();
 Command heuristics_command();
 Command scenes_command();
+Command generate_command();
 Command order_command();
 Command validate_command();
 

@@ -1,14 +1,29 @@
 #include "cli/run_args.h"
 
+#include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "catalog.h"
 #include "common/errors.h"
 #include "common/rng.h"
 #include "io/mesh_reader.h"
+#include "mesh_scenes.h"
 #include "split/registry.h"
 
 namespace bsp::cli {
+
+namespace {
+
+// What loading a mesh file changed, as one warning line on stderr (nothing when it changed nothing).
+void warn_about_load(const Scene& scene) {
+  const SceneLoadStats& s = scene.load;
+  if (s.triangulated + s.dropped_degenerate + s.dropped_duplicate_vertex == 0) return;
+  std::cerr << "bspbench: warning: " << scene.name << ": of " << s.faces_read << " faces, " << s.triangulated
+            << " triangulated (non-convex or non-planar), " << s.dropped_degenerate << " dropped (zero area), "
+            << s.dropped_duplicate_vertex << " dropped (repeated vertex)\n";
+}
+
+}  // namespace
 
 Scene scene_from_args(Args& args, std::uint64_t& seed) {
   const auto input = args.option("--input");
@@ -20,15 +35,19 @@ Scene scene_from_args(Args& args, std::uint64_t& seed) {
   if (input && name) throw UsageError("give either --scene or --input, not both");
   if (input) {
     if (n || !extra.empty()) throw UsageError("--n and --scene-param apply to --scene, not --input");
-    return read_mesh(*input);
+    Scene scene = read_mesh(*input);
+    warn_about_load(scene);
+    return scene;
   }
   if (!name) throw UsageError("missing --scene NAME or --input FILE");
   ParamAssignments given;
   if (n) given.emplace_back("n", *n);
-  if (seed_value) given.emplace_back("seed", std::to_string(*seed_value));
+  // A mesh has no seed; --seed then only feeds the heuristic.
+  if (seed_value && !is_mesh_scene(*name)) given.emplace_back("seed", std::to_string(*seed_value));
   for (const auto& kv : extra) given.push_back(parse_assignment(kv));
   Scene scene = make_scene(*name, given);
   check_scene(scene, "scene " + scene.name);
+  warn_about_load(scene);
   return scene;
 }
 
@@ -37,18 +56,26 @@ TreeArgs tree_args_from(Args& args, std::uint64_t seed) {
   t.seed = seed;
   t.heuristic = args.required("--heuristic");
   for (const auto& kv : args.options("--param")) t.params.push_back(parse_assignment(kv));
-  const std::string shape = args.option("--shape").value_or("strict");
-  if (shape != "strict" && shape != "coarse") throw UsageError("--shape must be strict or coarse, not '" + shape + "'");
-  t.options.shape = shape == "coarse" ? Shape::Coarse : Shape::Strict;
-  t.options.incremental = args.flag("--incremental");
-  const auto order = args.option("--order");
-  if (order && !t.options.incremental) throw UsageError("--order applies to --incremental builds");
-  if (order && *order != "given" && *order != "shuffled")
-    throw UsageError("--order must be given or shuffled, not '" + *order + "'");
-  t.options.order = order == "shuffled" ? InsertOrder::Shuffled : InsertOrder::Given;
-  t.options.order_seed = stream_seed(seed, 0x04de5);
+  t.options = build_options_from(args, seed);
   find_heuristic(t.heuristic);
   return t;
+}
+
+std::uint64_t insertion_order_seed(std::uint64_t seed) { return stream_seed(seed, 0x04de5); }
+
+BuildOptions build_options_from(Args& args, std::uint64_t seed) {
+  BuildOptions options;
+  const std::string shape = args.option("--shape").value_or("strict");
+  if (shape != "strict" && shape != "coarse") throw UsageError("--shape must be strict or coarse, not '" + shape + "'");
+  options.shape = shape == "coarse" ? Shape::Coarse : Shape::Strict;
+  options.incremental = args.flag("--incremental");
+  const auto order = args.option("--order");
+  if (order && !options.incremental) throw UsageError("--order applies to --incremental builds");
+  if (order && *order != "given" && *order != "shuffled")
+    throw UsageError("--order must be given or shuffled, not '" + *order + "'");
+  options.order = order == "shuffled" ? InsertOrder::Shuffled : InsertOrder::Given;
+  options.order_seed = insertion_order_seed(seed);
+  return options;
 }
 
 Tree build_from_args(const Scene& scene, const TreeArgs& t) {

@@ -29,6 +29,11 @@ struct TreeArgs {
 // `seed` receives --seed (default 1): the scene's seed for a generator, the heuristic's for any run.
 Scene scene_from_args(Args& args, std::uint64_t& seed);
 TreeArgs tree_args_from(Args& args, std::uint64_t seed);
+// --shape, --incremental, --order: the build options of a run with `seed` (tree_args_from's part
+// that does not name a heuristic, for commands that run several).
+BuildOptions build_options_from(Args& args, std::uint64_t seed);
+// The seed of a shuffled incremental build's insertion order in a run with `seed`.
+std::uint64_t insertion_order_seed(std::uint64_t seed);
 Tree build_from_args(const Scene& scene, const TreeArgs& t);
 // Identifies a run in every JSON the CLI writes: scene name, params, hash and bounds; heuristic,
 // its resolved params, shape, build order, seed.

@@ -39,6 +39,26 @@ void measure_shape(const Tree& tree, TreeMetrics& m) {
   m.mean_balance = internal ? balance_sum / static_cast<double>(internal) : 0.0;
 }
 
+void add_costs(const TreeMetrics& m, nlohmann::json& out) {
+  out.update({{"cell_margin", m.cell_margin},
+              {"e_point", m.expected.e_point},
+              {"e_line", m.expected.e_line},
+              {"root_cell_volume", m.expected.root_volume},
+              {"root_cell_area", m.expected.root_area},
+              {"views", m.views},
+              {"full_nodes_visited", m.traversal.full_nodes_visited},
+              {"full_plane_evals", m.traversal.full_plane_evals},
+              {"culled_nodes_visited", m.traversal.culled_nodes_visited},
+              {"culled_plane_evals", m.traversal.culled_plane_evals},
+              {"culled_fragments_emitted", m.traversal.culled_fragments_emitted},
+              {"rays", m.rays},
+              {"ray_seed", m.ray_seed},
+              {"ray_nodes_visited", m.ray.nodes_visited},
+              {"ray_fragment_tests", m.ray.fragment_tests},
+              {"ray_hit_fraction", m.ray.hit_fraction},
+              {"ray_max_nodes_visited", m.ray.max_nodes_visited}});
+}
+
 }  // namespace
 
 TreeMetrics measure_tree(const Tree& tree) {
@@ -55,20 +75,35 @@ TreeMetrics measure_tree(const Tree& tree) {
   return m;
 }
 
+TreeMetrics measure_tree(const Tree& tree, const MetricsSettings& settings) {
+  TreeMetrics m = measure_tree(tree);
+  m.costs_measured = true;
+  m.cell_margin = settings.cell_margin;
+  m.expected = expected_costs(tree, settings.cell_margin);
+  m.views = settings.views;
+  m.traversal = traversal_cost(tree, metric_views(tree.bounds, settings.views));
+  m.rays = settings.rays;
+  m.ray_seed = settings.seed;
+  m.ray = ray_cost(tree, metric_rays(tree.bounds, settings.rays, settings.seed));
+  return m;
+}
+
 nlohmann::json to_json(const TreeMetrics& m) {
-  return {{"n_input", m.n_input},
-          {"fragments", m.fragments},
-          {"splits", m.splits},
-          {"dropped_input", m.dropped_input},
-          {"dropped_slivers", m.dropped_slivers},
-          {"nodes", m.nodes},
-          {"leaves", m.leaves},
-          {"bytes", m.bytes},
-          {"max_depth", m.max_depth},
-          {"mean_depth", m.mean_depth},
-          {"fragment_weighted_depth", m.fragment_weighted_depth},
-          {"mean_balance", m.mean_balance},
-          {"build_seconds", m.build_seconds}};
+  nlohmann::json out = {{"n_input", m.n_input},
+                        {"fragments", m.fragments},
+                        {"splits", m.splits},
+                        {"dropped_input", m.dropped_input},
+                        {"dropped_slivers", m.dropped_slivers},
+                        {"nodes", m.nodes},
+                        {"leaves", m.leaves},
+                        {"bytes", m.bytes},
+                        {"max_depth", m.max_depth},
+                        {"mean_depth", m.mean_depth},
+                        {"fragment_weighted_depth", m.fragment_weighted_depth},
+                        {"mean_balance", m.mean_balance},
+                        {"build_seconds", m.build_seconds}};
+  if (m.costs_measured) add_costs(m, out);
+  return out;
 }
 
 }  // namespace bsp

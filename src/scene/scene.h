@@ -18,7 +18,7 @@ struct SceneLoadStats {
   std::uint64_t faces_read = 0;
   std::uint64_t triangulated = 0;      // non-convex or non-planar faces replaced by triangles
   std::uint64_t dropped_degenerate = 0;  // zero-area faces
-  std::uint64_t dropped_duplicate_vertex = 0;  // faces repeating a vertex index
+  std::uint64_t dropped_duplicate_vertex = 0;  // faces repeating a vertex (by index or position)
 };
 
 struct Scene {

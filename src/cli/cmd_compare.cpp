@@ -1,0 +1,210 @@
+// bspbench compare: every heuristic (or a list) on the same scene over K seeds. Seed k of a run is
+// --seed + k for both the scene and the heuristic. Each metric is reported as its mean with a 95%
+// Student-t interval over the seeds (metrics/statistics.h), with two Embree checks of every tree
+// summed over the seeds: its back-to-front orders (validate/order_check.h) and its ray shooting
+// (validate/ray_shoot_check.h). --views sets both the metrics' views and the validation's eyes.
+// Exit code 1 when any check fails.
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "catalog.h"
+#include "cli/commands.h"
+#include "cli/metrics_args.h"
+#include "cli/run_args.h"
+#include "common/errors.h"
+#include "metrics/statistics.h"
+#include "metrics/tree_metrics.h"
+#include "split/registry.h"
+#include "validate/order_check.h"
+#include "validate/ray_shoot_check.h"
+
+namespace bsp::cli {
+
+namespace {
+
+// Upper bound of --seeds: each seed builds, measures and validates every heuristic once.
+constexpr long long kMaxSeeds = 1000;
+// The columns of the text table.
+constexpr const char* kTableMetrics[] = {"fragments", "max_depth", "e_point", "e_line", "ray_nodes_visited",
+                                         "culled_nodes_visited"};
+
+struct CompareSpec {
+  std::string scene;
+  ParamAssignments scene_params;  // without the seed
+  std::uint64_t seed = 1;
+  std::uint64_t seeds = 1;
+  std::vector<std::string> heuristics;
+  BuildOptions options;
+  MetricsSettings metrics;
+  ValidationSettings validation;
+};
+
+std::vector<std::string> heuristic_list(const std::string& text) {
+  std::vector<std::string> out;
+  if (text == "all") {
+    for (const auto& h : heuristics()) out.push_back(h.name);
+    return out;
+  }
+  std::stringstream in(text);
+  for (std::string name; std::getline(in, name, ',');) out.push_back(find_heuristic(name).name);
+  if (out.empty()) throw UsageError("--heuristics wants all or a comma-separated list of names");
+  return out;
+}
+
+CompareSpec parse(Args& args) {
+  CompareSpec s;
+  s.scene = args.required("--scene");
+  if (const auto n = args.option("--n")) s.scene_params.emplace_back("n", *n);
+  for (const auto& kv : args.options("--scene-param")) s.scene_params.push_back(parse_assignment(kv));
+  for (const auto& [k, v] : s.scene_params)
+    if (k == "seed") throw UsageError("give the scene's seed with --seed");
+  s.seed = static_cast<std::uint64_t>(args.integer("--seed", 0, 9'000'000'000'000'000LL).value_or(1));
+  s.seeds = static_cast<std::uint64_t>(args.integer("--seeds", 1, kMaxSeeds).value_or(1));
+  s.heuristics = heuristic_list(args.required("--heuristics"));
+  s.options = build_options_from(args, s.seed);
+  s.metrics = metrics_settings_from(args, s.seed);
+  s.validation.views = static_cast<int>(s.metrics.views);
+  return s;
+}
+
+Scene scene_for(const CompareSpec& s, std::uint64_t seed) {
+  ParamAssignments given = s.scene_params;
+  given.emplace_back("seed", std::to_string(seed));
+  Scene scene = make_scene(s.scene, given);
+  check_scene(scene, "scene " + scene.name);
+  return scene;
+}
+
+// One build of `heuristic` at `seed`: its metrics and its checks.
+struct Run {
+  nlohmann::json metrics;
+  ValidationReport order;
+  RayShootCheck ray_shoot;
+};
+
+Run run_once(const CompareSpec& s, const Scene& scene, const std::string& heuristic, std::uint64_t seed) {
+  TreeArgs t{heuristic, {}, s.options, seed};
+  t.options.order_seed = insertion_order_seed(seed);
+  const Tree tree = build_from_args(scene, t);
+  MetricsSettings m = s.metrics;
+  m.seed = seed;
+  return {to_json(measure_tree(tree, m)), validate_tree(tree, s.validation), check_ray_shooting(tree, s.validation)};
+}
+
+// The checks summed over the runs; `failures` counts order violations and ray-shooting mismatches.
+nlohmann::json validation_totals(const std::vector<Run>& runs) {
+  std::uint64_t violations = 0, order_rays = 0, mismatches = 0, grazing = 0, shoot_rays = 0;
+  for (const Run& r : runs) {
+    violations += r.order.violations;
+    order_rays += r.order.rays;
+    mismatches += r.ray_shoot.mismatches;
+    grazing += r.ray_shoot.grazing;
+    shoot_rays += r.ray_shoot.rays;
+  }
+  return {{"failures", violations + mismatches},
+          {"order_violations", violations},
+          {"order_rays", order_rays},
+          {"ray_shoot_mismatches", mismatches},
+          {"ray_shoot_grazing", grazing},
+          {"ray_shoot_rays", shoot_rays}};
+}
+
+// Mean and interval of every numeric metric over the runs, the checks summed, and each run.
+nlohmann::json summarize_runs(const std::string& heuristic, const std::vector<Run>& runs) {
+  std::map<std::string, std::vector<double>> samples;
+  nlohmann::json per_seed = nlohmann::json::array();
+  for (const Run& r : runs) {
+    for (const auto& [k, v] : r.metrics.items())
+      if (v.is_number()) samples[k].push_back(v.get<double>());
+    per_seed.push_back({{"metrics", r.metrics}, {"order_check", to_json(r.order)}, {"ray_shoot_check", to_json(r.ray_shoot)}});
+  }
+  nlohmann::json metrics = nlohmann::json::object();
+  for (const auto& [k, xs] : samples) metrics[k] = to_json(summarize(xs));
+  return {{"heuristic", heuristic},
+          {"metrics", std::move(metrics)},
+          {"validation", validation_totals(runs)},
+          {"runs", std::move(per_seed)}};
+}
+
+nlohmann::json header(const CompareSpec& s, const Scene& first) {
+  nlohmann::json seeds = nlohmann::json::array();
+  for (std::uint64_t k = 0; k < s.seeds; ++k) seeds.push_back(s.seed + k);
+  nlohmann::json params = scene_json(first)["params"];
+  params.erase("seed");
+  return {{"scene", s.scene},
+          {"scene_params", params},
+          {"seeds", seeds},
+          {"shape", s.options.shape == Shape::Coarse ? "coarse" : "strict"},
+          {"build", s.options.incremental ? "incremental" : "recursive"},
+          {"order", s.options.order == InsertOrder::Shuffled ? "shuffled" : "given"},
+          {"cell_margin", s.metrics.cell_margin},
+          {"views", s.metrics.views},
+          {"rays", s.metrics.rays}};
+}
+
+std::string mean_and_interval(const nlohmann::json& summary) {
+  char buf[64];
+  const double mean = summary["mean"].get<double>();
+  if (summary["ci95"].is_null()) {
+    std::snprintf(buf, sizeof buf, "%.4g", mean);
+  } else {
+    const double half = (summary["ci95"][1].get<double>() - summary["ci95"][0].get<double>()) / 2;
+    std::snprintf(buf, sizeof buf, "%.4g ± %.2g", mean, half);
+  }
+  return buf;
+}
+
+void print_table(const nlohmann::json& out) {
+  std::cout << "scene " << out["scene"].get<std::string>() << " " << out["scene_params"].dump() << ", seeds "
+            << out["seeds"].dump() << ", " << out["shape"].get<std::string>() << " "
+            << out["build"].get<std::string>() << "\n";
+  std::cout << "heuristic";
+  for (const char* m : kTableMetrics) std::cout << "\t" << m;
+  std::cout << "\tcheck failures\n";
+  for (const auto& h : out["heuristics"]) {
+    std::cout << h["heuristic"].get<std::string>();
+    for (const char* m : kTableMetrics) std::cout << "\t" << mean_and_interval(h.at("metrics").at(m));
+    std::cout << "\t" << h["validation"]["failures"].get<std::uint64_t>() << "\n";
+  }
+}
+
+int run(Args& args) {
+  const bool json = args.flag("--json");
+  const CompareSpec spec = parse(args);
+  args.finish();
+  std::vector<Scene> scenes;
+  for (std::uint64_t k = 0; k < spec.seeds; ++k) scenes.push_back(scene_for(spec, spec.seed + k));
+  nlohmann::json out = header(spec, scenes.front());
+  out["heuristics"] = nlohmann::json::array();
+  std::uint64_t failures = 0;
+  for (const auto& h : spec.heuristics) {
+    std::vector<Run> runs;
+    for (std::uint64_t k = 0; k < spec.seeds; ++k) runs.push_back(run_once(spec, scenes[k], h, spec.seed + k));
+    out["heuristics"].push_back(summarize_runs(h, runs));
+    failures += out["heuristics"].back()["validation"]["failures"].get<std::uint64_t>();
+  }
+  out["validation_failures"] = failures;
+  if (json)
+    std::cout << out.dump() << "\n";
+  else
+    print_table(out);
+  return failures ? 1 : 0;
+}
+
+}  // namespace
+
+Command compare_command() {
+  static const std::string usage =
+      "--scene NAME [--n N] [--seed S] [--scene-param k=v]... --heuristics all|NAME[,NAME]... [--seeds K] "
+      "[--shape strict|coarse] [--incremental [--order given|shuffled]] " +
+      std::string(kMetricsUsage) + " [--json]";
+  return {"compare", usage,
+          "every heuristic on one scene over K seeds: each metric's mean and 95% interval, and validation", run};
+}
+
+}  // namespace bsp::cli

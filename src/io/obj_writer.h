@@ -1,0 +1,16 @@
+#pragma once
+// Polygons as Wavefront OBJ text, for looking at scenes in any viewer and for reading them back.
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "geometry/polygon.h"
+
+namespace bsp {
+
+// Each polygon writes its own "v" and "vt" lines, then its "f" line; coordinates are in shortest
+// round-trip form, so reading the file back gives the same doubles. `comment` (may be multi-line)
+// opens the file as "# " lines. Built in parallel chunks; the text is the same on any thread count.
+std::string to_obj(std::span<const Polygon> polys, std::string_view comment);
+
+}  // namespace bsp

@@ -1,0 +1,45 @@
+#pragma once
+// Summary statistics over repeated runs (seeds), shared by `bspbench compare` and the sweeps:
+// sample mean with a two-sided 95% confidence interval from Student's t distribution, and the
+// least-squares fit of a power law y = c * x^k on log-log axes with its coefficient of
+// determination R^2.
+#include <cstddef>
+#include <span>
+
+#include <nlohmann/json_fwd.hpp>
+
+namespace bsp {
+
+// The 0.975 quantile of Student's t distribution with `dof` >= 1 degrees of freedom, so that
+// mean ± t * s / sqrt(n) is a two-sided 95% interval for n = dof + 1 samples. Exact table (to 10
+// digits) up to 30 degrees of freedom, the Cornish–Fisher expansion in 1/dof above (Abramowitz and
+// Stegun 26.7.5; error below 1e-6 there).
+double student_t_975(std::size_t dof);
+
+struct Summary {
+  std::size_t n = 0;        // number of samples
+  double mean = 0;
+  double stddev = 0;        // sample standard deviation (n - 1 in the denominator); 0 for n < 2
+  double half_width = 0;    // of the 95% interval: t(n-1) * stddev / sqrt(n); 0 for n < 2
+  bool has_interval() const { return n >= 2; }
+  double lo() const { return mean - half_width; }
+  double hi() const { return mean + half_width; }
+};
+
+Summary summarize(std::span<const double> samples);
+// {n, mean, stddev, ci95: [lo, hi]}; ci95 is null when there is no interval (n < 2).
+nlohmann::json to_json(const Summary& s);
+
+// y = coefficient * x^exponent fitted by least squares on (log x, log y). Needs at least two
+// samples with distinct x, all x and y positive (others throw std::invalid_argument). r2 is the
+// coefficient of determination of the fit in log space: 1 for points exactly on a power law.
+struct PowerFit {
+  double exponent = 0;
+  double coefficient = 0;
+  double r2 = 0;
+};
+
+PowerFit fit_power_law(std::span<const double> x, std::span<const double> y);
+nlohmann::json to_json(const PowerFit& f);
+
+}  // namespace bsp

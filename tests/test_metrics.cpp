@@ -1,0 +1,557 @@
+// Tree-quality metrics: shape metrics and Naylor's expected costs pinned on hand-built trees, the
+// exact expected costs against Monte Carlo estimates, frustum culling that never loses a fragment in
+// view, ray shooting against brute force and against Embree for every registered heuristic, the
+// statistics of `bspbench compare`, and the command itself.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <string>
+#include <sys/wait.h>
+
+#include "catalog.h"
+#include "common/rng.h"
+#include "metrics/expected_cost.h"
+#include "metrics/ray_cost.h"
+#include "metrics/ray_shoot.h"
+#include "metrics/statistics.h"
+#include "metrics/traversal_cost.h"
+#include "metrics/tree_metrics.h"
+#include "split/registry.h"
+#include "tree/build.h"
+#include "tree/traverse_culled.h"
+#include "validate/embree_scene.h"
+#include "validate/ray_shoot_check.h"
+#include "validate/view_rays.h"
+
+using namespace bsp;
+
+namespace {
+
+Tree build(const std::vector<Polygon>& polys, std::string_view heuristic, BuildOptions opts = {}) {
+  auto splitter = make_splitter(heuristic, {}, 1);
+  return build_tree(polys, *splitter, opts);
+}
+
+Tree build_scene(std::string_view scene, int n, std::string_view heuristic, BuildOptions opts = {}) {
+  return build(make_scene(scene, {{"n", std::to_string(n)}, {"seed", "3"}}).polygons, heuristic, opts);
+}
+
+// --- hand-built trees in the unit cube
+
+Vec3 axis_vector(int axis) { return {axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0}; }
+
+// A square in the plane x_axis = value covering [0.1, 0.4]^2 of the other two axes, counter-
+// clockwise about +axis.
+Polygon axis_square(int axis, double value) {
+  const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+  Polygon p;
+  for (auto [u, v] : {std::pair{0.1, 0.1}, {0.4, 0.1}, {0.4, 0.4}, {0.1, 0.4}}) {
+    double c[3];
+    c[axis] = value;
+    c[a] = u;
+    c[b] = v;
+    p.verts.push_back({{c[0], c[1], c[2]}, 0, 0});
+  }
+  return p;
+}
+
+struct HandNode {
+  int axis;  // plane x_axis = 0.5, front towards +axis
+  std::uint32_t front, back;
+  int fragments;  // squares stored on the plane
+};
+
+// Nodes must be listed in pre-order. Bounds: the unit cube.
+Tree hand_built(const std::vector<HandNode>& spec) {
+  Tree t;
+  t.bounds.add(Vec3{0, 0, 0});
+  t.bounds.add(Vec3{1, 1, 1});
+  t.tol = Tolerance::for_extent(t.bounds.diagonal());
+  for (const HandNode& s : spec) {
+    Node n;
+    n.plane = t.planes.add(Plane{axis_vector(s.axis), -0.5});
+    n.front = s.front;
+    n.back = s.back;
+    n.first = static_cast<std::uint32_t>(t.fragments.size());
+    n.count = static_cast<std::uint32_t>(s.fragments);
+    for (int i = 0; i < s.fragments; ++i) {
+      t.fragments.push_back(axis_square(s.axis, 0.5));
+      t.fragment_plane.push_back(n.plane);
+    }
+    t.nodes.push_back(n);
+  }
+  t.stats.n_input = t.fragments.size();
+  return t;
+}
+
+// Root x = 0.5 (1 square); its front child y = 0.5 (2 squares) with front child z = 0.5 (1); its
+// back child y = 0.5 (1). Pre-order: root 0, front 1, front-front 2, back 3.
+Tree four_node_tree() { return hand_built({{0, 1, 3, 1}, {1, 2, kNull, 2}, {2, kNull, kNull, 1}, {1, kNull, kNull, 1}}); }
+
+// --- Monte Carlo estimates of the expected costs, independent of the polytopes
+
+Vec3 sphere_direction(Rng& rng) {
+  const double z = rng.uniform(-1.0, 1.0), phi = rng.uniform(0.0, 2 * std::numbers::pi);
+  const double r = std::sqrt(std::max(0.0, 1 - z * z));
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+std::uint32_t plane_tests_to_locate(const Tree& tree, const Vec3& p) {
+  std::uint32_t tests = 0;
+  for (std::uint32_t n = 0; n != kNull && !tree.nodes[n].is_cell_leaf();) {
+    ++tests;
+    const Node& node = tree.nodes[n];
+    n = tree.planes[node.plane].distance(p) >= 0 ? node.front : node.back;
+  }
+  return tests;
+}
+
+double monte_carlo_e_point(const Tree& tree, const Box& root, int samples) {
+  Rng rng(11);
+  double sum = 0;
+  for (int i = 0; i < samples; ++i) {
+    const Vec3 p{rng.uniform(root.lo.x, root.hi.x), rng.uniform(root.lo.y, root.hi.y), rng.uniform(root.lo.z, root.hi.z)};
+    sum += plane_tests_to_locate(tree, p);
+  }
+  return sum / samples;
+}
+
+// The parameter interval of the line o + t d inside the box; empty (t0 > t1) when it misses.
+std::pair<double, double> line_in_box(const Vec3& o, const Vec3& d, const Box& box) {
+  double t0 = -1e300, t1 = 1e300;
+  for (int a = 0; a < 3; ++a) {
+    const double ta = (box.lo[a] - o[a]) / d[a], tb = (box.hi[a] - o[a]) / d[a];
+    t0 = std::max(t0, std::min(ta, tb));
+    t1 = std::min(t1, std::max(ta, tb));
+  }
+  return {t0, t1};
+}
+
+// Nodes whose cell the segment o + t d, t in [t0, t1], crosses: walk the segment down the tree.
+std::uint32_t nodes_crossed(const Tree& tree, const Vec3& o, const Vec3& d, double t0, double t1) {
+  struct Item {
+    std::uint32_t node;
+    double a, b;
+  };
+  std::vector<Item> stack{{0, t0, t1}};
+  std::uint32_t count = 0;
+  while (!stack.empty()) {
+    const Item it = stack.back();
+    stack.pop_back();
+    ++count;
+    const Node& node = tree.nodes[it.node];
+    if (node.is_cell_leaf()) continue;
+    const Plane& pl = tree.planes[node.plane];
+    const double da = pl.distance(o + d * it.a), db = pl.distance(o + d * it.b);
+    const double tc = da * db < 0 ? it.a + (it.b - it.a) * da / (da - db) : it.b;
+    const std::uint32_t at_a = da >= 0 ? node.front : node.back, at_b = da >= 0 ? node.back : node.front;
+    if (at_a != kNull) stack.push_back({at_a, it.a, tc});
+    if (tc < it.b && at_b != kNull) stack.push_back({at_b, tc, it.b});
+  }
+  return count;
+}
+
+// Lines from the isotropic uniform line measure restricted to those meeting the box: a uniform
+// direction, then a uniform point of the disc of radius half the diagonal perpendicular to it
+// through the box centre (it holds the box's whole projection); lines missing the box are redrawn.
+double monte_carlo_e_line(const Tree& tree, const Box& root, int samples) {
+  Rng rng(12);
+  const double r = root.diagonal() / 2;
+  double sum = 0;
+  for (int accepted = 0; accepted < samples;) {
+    const Vec3 d = sphere_direction(rng);
+    const Vec3 e1 = normalize(std::abs(d.x) < 0.9 ? cross(d, Vec3{1, 0, 0}) : cross(d, Vec3{0, 1, 0}));
+    const Vec3 e2 = cross(d, e1);
+    const double a = rng.uniform(-1.0, 1.0), b = rng.uniform(-1.0, 1.0);
+    if (a * a + b * b > 1) continue;
+    const Vec3 o = root.center() + (e1 * a + e2 * b) * r;
+    const auto [t0, t1] = line_in_box(o, d, root);
+    if (t0 >= t1) continue;
+    ++accepted;
+    sum += nodes_crossed(tree, o, d, t0, t1);
+  }
+  return sum / samples;
+}
+
+// --- ray shooting references
+
+std::optional<Hit> brute_force_first_hit(const Tree& tree, const Ray& ray) {
+  std::optional<Hit> best;
+  for (std::uint32_t i = 0; i < tree.fragments.size(); ++i) {
+    const auto t = ray_polygon_hit(ray, tree.fragments[i], tree.planes[tree.fragment_plane[i]]);
+    if (t && (!best || *t < best->t)) best = Hit{*t, i};
+  }
+  return best;
+}
+
+// Same answer: both miss, or the same fragment, or hits at the same distance (a tie).
+bool same_first_hit(const std::optional<Hit>& a, const std::optional<Hit>& b, const Ray& ray, double tie) {
+  if (!a || !b) return !a && !b;
+  return a->fragment == b->fragment || std::abs(a->t - b->t) * length(ray.dir) <= tie;
+}
+
+RayShootCheck check_against_embree(const Tree& tree, int views) {
+  ValidationSettings settings;
+  settings.views = views;
+  return check_ray_shooting(tree, settings);
+}
+
+// --- frustum checks
+
+// The centroid, every vertex pulled 1% toward it, and seeded random points of the fan triangles.
+std::vector<Vec3> sample_points(const Polygon& poly, Rng& rng) {
+  const Vec3 c = centroid(poly);
+  std::vector<Vec3> out{c};
+  for (const auto& v : poly.verts) out.push_back(lerp(v.p, c, 0.01));
+  for (int k = 0; k < 8; ++k) {
+    const std::size_t i = 1 + rng.below(poly.verts.size() - 2);
+    double a = rng.uniform(), b = rng.uniform();
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    out.push_back(poly.verts[0].p + (poly.verts[i].p - poly.verts[0].p) * a + (poly.verts[i + 1].p - poly.verts[0].p) * b);
+  }
+  return out;
+}
+
+struct CullingCheck {
+  std::uint64_t missed = 0;         // sample points inside the frustum of fragments not emitted
+  std::uint64_t seen_inside = 0;    // sample points inside the frustum of emitted fragments
+  std::uint64_t culled = 0;         // fragments not emitted, over the views
+};
+
+CullingCheck check_culling(const Tree& tree, std::span<const Frustum> views) {
+  CullingCheck out;
+  Rng rng(5);
+  const double margin = 1e-6 * tree.bounds.diagonal();
+  for (const Frustum& f : views) {
+    std::vector<bool> emitted(tree.fragments.size(), false);
+    for (auto i : culled_visibility_order(tree, f)) emitted[i] = true;
+    for (std::uint32_t i = 0; i < tree.fragments.size(); ++i) {
+      out.culled += !emitted[i];
+      for (const Vec3& p : sample_points(tree.fragments[i], rng))
+        if (f.contains(p, margin)) (emitted[i] ? out.seen_inside : out.missed) += 1;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------
+// Shape metrics and expected costs on hand-built trees
+
+TEST(ShapeMetrics, HandBuiltTreeGivesPinnedDepthsAndBalance) {
+  const TreeMetrics m = measure_tree(four_node_tree());
+  EXPECT_EQ(m.nodes, 4u);
+  EXPECT_EQ(m.leaves, 2u);
+  EXPECT_EQ(m.fragments, 5u);
+  EXPECT_EQ(m.max_depth, 3u);
+  EXPECT_DOUBLE_EQ(m.mean_depth, 2.5);                // leaves at depths 3 and 2
+  EXPECT_DOUBLE_EQ(m.fragment_weighted_depth, 2.0);   // (1*1 + 2*2 + 1*3 + 1*2) / 5
+  EXPECT_DOUBLE_EQ(m.mean_balance, 0.75);             // root |3-1|/4, its front child |1-0|/1
+}
+
+TEST(ExpectedCosts, OnePlaneHalvingTheBoxCostsOneTestForPointsAndLines) {
+  const Tree tree = hand_built({{0, kNull, kNull, 1}});
+  const ExpectedCosts c = expected_costs(tree, 0.0);
+  EXPECT_DOUBLE_EQ(c.root_volume, 1.0);
+  EXPECT_DOUBLE_EQ(c.root_area, 6.0);
+  EXPECT_NEAR(c.e_point, 1.0, 1e-12);
+  EXPECT_NEAR(c.e_line, 1.0, 1e-12);
+}
+
+// Cells: root the unit cube; its front child x > 1/2 (volume 1/2, area 4); that one's front child
+// x, y > 1/2 (volume 1/4, area 5/2); the root's back child x < 1/2 (volume 1/2, area 4). Hence
+// E_point = 1 + 1/2 + 1/4 + 1/2 and E_line = 1 + (4 + 5/2 + 4) / 6.
+TEST(ExpectedCosts, FourNodeTreeGivesSumsOfCellVolumesAndAreas) {
+  const ExpectedCosts c = expected_costs(four_node_tree(), 0.0);
+  EXPECT_NEAR(c.e_point, 2.25, 1e-12);
+  EXPECT_NEAR(c.e_line, 2.75, 1e-12);
+}
+
+TEST(ExpectedCosts, MarginGrowsTheRootCell) {
+  const Tree tree = hand_built({{0, kNull, kNull, 1}});
+  const ExpectedCosts c = expected_costs(tree, 0.1);
+  const double side = 1 + 2 * 0.1 * std::sqrt(3.0);
+  EXPECT_NEAR(c.root_volume, side * side * side, 1e-12);
+  EXPECT_NEAR(c.e_point, 1.0, 1e-12);
+}
+
+class ExpectedCostsMonteCarlo : public ::testing::TestWithParam<std::tuple<std::string, std::string, Shape>> {};
+
+TEST_P(ExpectedCostsMonteCarlo, ExactCostsAgreeWithPointAndLineSamplingWithinTwoPercent) {
+  const auto& [scene, heuristic, shape] = GetParam();
+  const Tree tree = build_scene(scene, 300, heuristic, {.shape = shape});
+  const double margin = 0.05;
+  const ExpectedCosts exact = expected_costs(tree, margin);
+  const Box root = root_cell(tree, margin);
+  constexpr int kSamples = 100000;
+  const double point = monte_carlo_e_point(tree, root, kSamples);
+  const double line = monte_carlo_e_line(tree, root, kSamples);
+  EXPECT_GT(exact.e_point, 3.0);  // a tree deep enough for the comparison to mean something
+  EXPECT_NEAR(point / exact.e_point, 1.0, 0.02) << "exact " << exact.e_point << ", sampled " << point;
+  EXPECT_NEAR(line / exact.e_line, 1.0, 0.02) << "exact " << exact.e_line << ", sampled " << line;
+}
+
+INSTANTIATE_TEST_SUITE_P(Trees, ExpectedCostsMonteCarlo,
+                         ::testing::Values(std::tuple{"random-triangles", "random", Shape::Strict},
+                                           std::tuple{"random-triangles", "first", Shape::Coarse},
+                                           std::tuple{"cyclic-overlap", "random", Shape::Coarse}));
+
+// ------------------------------------------------------------------------------------------------
+// Frustum-culled traversal
+
+TEST(CulledTraversal, VisitsNoMoreNodesThanTheFullOneAndKeepsItsOrder) {
+  const Tree tree = build_scene("random-triangles", 400, "random");
+  for (const Frustum& f : metric_views(tree.bounds, 8)) {
+    TraversalCounters culled_counts, full_counts;
+    const auto culled = culled_visibility_order(tree, f, &culled_counts);
+    const auto full = visibility_order(tree, f.eye, Order::BackToFront, &full_counts);
+    EXPECT_LE(culled_counts.nodes_visited, full_counts.nodes_visited);
+    EXPECT_EQ(culled_counts.fragments_emitted, culled.size());
+    // A subsequence of the full back-to-front order.
+    auto it = full.begin();
+    for (auto i : culled) {
+      it = std::find(it, full.end(), i);
+      ASSERT_NE(it, full.end()) << "fragment " << i << " out of the full order";
+    }
+  }
+}
+
+TEST(CulledTraversal, EmitsEveryFragmentMeetingTheFrustum) {
+  for (Shape shape : {Shape::Strict, Shape::Coarse}) {
+    const Tree tree = build_scene("random-triangles", 400, "random", {.shape = shape});
+    const auto views = metric_views(tree.bounds, 16);
+    const CullingCheck c = check_culling(tree, views);
+    EXPECT_EQ(c.missed, 0u);
+    EXPECT_GT(c.seen_inside, 0u);  // the views do see fragments...
+    EXPECT_GT(c.culled, 0u);       // ...and do cull some
+  }
+}
+
+TEST(CulledTraversal, CorruptedTreeLosesFragmentsInView) {
+  Tree tree = build_scene("random-triangles", 400, "random");
+  std::swap(tree.nodes[0].front, tree.nodes[0].back);
+  EXPECT_GT(check_culling(tree, metric_views(tree.bounds, 16)).missed, 0u);
+}
+
+TEST(CulledTraversal, FrustumContainingTheWholeSceneEmitsEverything) {
+  const Tree tree = build_scene("cyclic-overlap", 300, "random", {.shape = Shape::Coarse});
+  const double d = tree.bounds.diagonal();
+  const Frustum f{tree.bounds.center() + Vec3{0.3, -0.2, 1.0} * (2 * d), Vec3{-0.3, 0.2, -1.0}, {0, 1, 0},
+                  1.2, 1.2, 0.01 * d, 10 * d};
+  for (const auto& frag : tree.fragments)
+    for (const auto& v : frag.verts) ASSERT_TRUE(f.contains(v.p, 0.0));
+  auto order = culled_visibility_order(tree, f);
+  ASSERT_EQ(order.size(), tree.fragments.size());
+  std::sort(order.begin(), order.end());
+  for (std::uint32_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], i);
+}
+
+// ------------------------------------------------------------------------------------------------
+// Ray shooting
+
+TEST(RayShooting, EqualsBruteForceNearestHitOnSeededRays) {
+  for (Shape shape : {Shape::Strict, Shape::Coarse}) {
+    const Tree tree = build_scene("random-triangles", 300, "random", {.shape = shape});
+    const double tie = 1e-9 * tree.bounds.diagonal();
+    int hits = 0;
+    for (const Ray& ray : metric_rays(tree.bounds, 3000, 7)) {
+      const RayShot shot = shoot_ray(tree, ray);
+      const auto expected = brute_force_first_hit(tree, ray);
+      hits += expected.has_value();
+      ASSERT_TRUE(same_first_hit(shot.hit, expected, ray, tie));
+      EXPECT_LE(shot.nodes_visited, tree.nodes.size());
+    }
+    EXPECT_GT(hits, 300);
+  }
+}
+
+TEST(RayShooting, CorruptedTreeDisagreesWithEmbree) {
+  Tree tree = build_scene("random-triangles", 200, "random");
+  ASSERT_EQ(check_against_embree(tree, 4).mismatches, 0u);
+  std::swap(tree.nodes[0].front, tree.nodes[0].back);
+  EXPECT_GT(check_against_embree(tree, 4).mismatches, 0u);
+}
+
+using RayCase = std::tuple<std::string, std::string, Shape, bool>;  // heuristic, scene, shape, incremental
+
+class RayShootingEveryHeuristic : public ::testing::TestWithParam<RayCase> {};
+
+TEST_P(RayShootingEveryHeuristic, FirstHitEqualsEmbreeOnTheValidationRays) {
+  const auto& [heuristic, scene, shape, incremental] = GetParam();
+  const Tree tree = build_scene(scene, 200, heuristic, {.shape = shape, .incremental = incremental});
+  const RayShootCheck c = check_against_embree(tree, 4);
+  EXPECT_GT(c.hits, c.rays / 4);
+  EXPECT_EQ(c.mismatches, 0u) << "of " << c.rays << " rays; first: "
+                              << (c.first_problems.empty() ? "" : c.first_problems.front());
+  // Hits too close to a fragment's edge for Embree's float test to decide are rare.
+  EXPECT_LE(c.grazing, c.rays / 1000);
+}
+
+std::vector<std::string> heuristic_names() {
+  std::vector<std::string> out;
+  for (const auto& h : heuristics()) out.push_back(h.name);
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Registry, RayShootingEveryHeuristic,
+    ::testing::Combine(::testing::ValuesIn(heuristic_names()),
+                       ::testing::Values("random-triangles", "cyclic-overlap", "architecture"),
+                       ::testing::Values(Shape::Strict, Shape::Coarse), ::testing::Bool()),
+    [](const ::testing::TestParamInfo<RayCase>& info) {
+      std::string name = std::get<0>(info.param) + "_" + std::get<1>(info.param) + "_" +
+                         (std::get<2>(info.param) == Shape::Strict ? "strict" : "coarse") +
+                         (std::get<3>(info.param) ? "_incremental" : "_recursive");
+      std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+      return name;
+    });
+
+// ------------------------------------------------------------------------------------------------
+// A chain as deep as the input is long
+
+// The tree `first` builds from n unit squares at z = 0, 1, ..., n-1 facing +z, made directly (the
+// build is quadratic on it): node i stores square i on the plane z = i, its front child is node i+1.
+Tree chain_tree(std::size_t n) {
+  Tree t;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = static_cast<double>(i);
+    Node node;
+    node.plane = t.planes.add(Plane{{0, 0, 1}, -z});
+    node.front = i + 1 < n ? static_cast<std::uint32_t>(i + 1) : kNull;
+    node.first = static_cast<std::uint32_t>(i);
+    node.count = 1;
+    t.nodes.push_back(node);
+    t.fragments.push_back({{{{0, 0, z}, 0, 0}, {{1, 0, z}, 1, 0}, {{1, 1, z}, 1, 1}, {{0, 1, z}, 0, 1}},
+                           static_cast<std::uint32_t>(i)});
+    t.fragment_plane.push_back(node.plane);
+    for (const auto& v : t.fragments.back().verts) t.bounds.add(v.p);
+  }
+  t.tol = Tolerance::for_extent(t.bounds.diagonal());
+  return t;
+}
+
+// Root cell z in [-m, n-1+m]; node k >= 1 is reached by the points above z = k-1, so
+// E_point = 1 + sum_{k=1}^{n-1} (n-k+m)/(n-1+2m) = 1 + (n-1)(n/2+m)/(n-1+2m): the chain's worst case.
+TEST(DegenerateChain, HundredThousandDeepMetricsRunWithoutRecursionAndPinTheChainsExpectedCost) {
+  constexpr std::size_t n = 100000;
+  const Tree tree = chain_tree(n);
+  const double margin = 0.01, m = margin * tree.bounds.diagonal();
+  const ExpectedCosts c = expected_costs(tree, margin);
+  const double nd = static_cast<double>(n);
+  EXPECT_NEAR(c.e_point / (1 + (nd - 1) * (nd / 2 + m) / (nd - 1 + 2 * m)), 1.0, 1e-9);
+  // From above, the walk descends the whole chain before it reaches the top square.
+  const RayShot down = shoot_ray(tree, {{0.5, 0.5, nd}, {0, 0, -1}});
+  ASSERT_TRUE(down.hit);
+  EXPECT_EQ(tree.fragments[down.hit->fragment].source, n - 1);
+  EXPECT_EQ(down.nodes_visited, n);
+  const Frustum side{{0.5, -2 * nd, nd / 2}, {0, 1, 0}, {0, 0, 1}, 0.5, 0.5, 1.0, 4 * nd};
+  EXPECT_EQ(culled_visibility_order(tree, side).size(), n);
+}
+
+// ------------------------------------------------------------------------------------------------
+// The full metrics
+
+TEST(MeasureTree, FullMetricsAreDeterministicAndOnlyTheyCarryQueryCosts) {
+  const Tree tree = build_scene("random-triangles", 300, "random");
+  MetricsSettings s;
+  s.rays = 500;
+  nlohmann::json a = to_json(measure_tree(tree, s)), b = to_json(measure_tree(tree, s));
+  a.erase("build_seconds");
+  b.erase("build_seconds");
+  EXPECT_EQ(a, b);
+  EXPECT_GT(a["e_line"].get<double>(), 1.0);
+  EXPECT_EQ(a["full_nodes_visited"].get<double>(), static_cast<double>(tree.nodes.size()));
+  EXPECT_LT(a["culled_nodes_visited"].get<double>(), a["full_nodes_visited"].get<double>());
+  EXPECT_GT(a["ray_nodes_visited"].get<double>(), 0.0);
+  EXPECT_FALSE(to_json(measure_tree(tree)).contains("e_point"));
+}
+
+// ------------------------------------------------------------------------------------------------
+// Statistics
+
+TEST(Statistics, StudentQuantilesMatchTablesAndApproachTheNormal) {
+  EXPECT_NEAR(student_t_975(1), 12.7062, 1e-4);
+  EXPECT_NEAR(student_t_975(2), 4.3027, 1e-4);
+  EXPECT_NEAR(student_t_975(30), 2.0423, 1e-4);
+  EXPECT_NEAR(student_t_975(31), 2.0395, 1e-4);   // first value from the expansion
+  EXPECT_NEAR(student_t_975(60), 2.0003, 1e-4);
+  EXPECT_NEAR(student_t_975(120), 1.9799, 1e-4);
+  EXPECT_NEAR(student_t_975(1000000), 1.95996, 1e-5);
+}
+
+TEST(Statistics, SummaryOfAKnownSample) {
+  const std::vector<double> xs{1, 2, 3, 4, 5};
+  const Summary s = summarize(xs);
+  EXPECT_DOUBLE_EQ(s.mean, 3.0);
+  EXPECT_NEAR(s.stddev, std::sqrt(2.5), 1e-12);
+  EXPECT_NEAR(s.half_width, 2.7764451052 * std::sqrt(2.5) / std::sqrt(5.0), 1e-9);
+  const std::vector<double> one{4};
+  EXPECT_FALSE(summarize(one).has_interval());
+  EXPECT_TRUE(to_json(summarize(one))["ci95"].is_null());
+}
+
+TEST(Statistics, PowerLawFitRecoversExponentCoefficientAndR2) {
+  const std::vector<double> x{10, 100, 1000, 10000};
+  std::vector<double> y;
+  for (double v : x) y.push_back(3 * v * v);
+  const PowerFit exact = fit_power_law(x, y);
+  EXPECT_NEAR(exact.exponent, 2.0, 1e-12);
+  EXPECT_NEAR(exact.coefficient, 3.0, 1e-9);
+  EXPECT_NEAR(exact.r2, 1.0, 1e-12);
+  y[1] *= 3;
+  EXPECT_LT(fit_power_law(x, y).r2, 0.999);
+  EXPECT_THROW(fit_power_law(std::vector<double>{1, 1}, std::vector<double>{2, 3}), std::invalid_argument);
+}
+
+// ------------------------------------------------------------------------------------------------
+// bspbench compare
+
+namespace {
+
+struct Output {
+  int code;
+  std::string out;
+};
+
+Output run_cli(const std::string& args) {
+  const std::string cmd = std::string(BSPBENCH_EXE) + " " + args + " 2>/dev/null";
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
+  std::string out;
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, pipe.get())) > 0;) out.append(buf, n);
+  const int status = pclose(pipe.release());
+  return {WEXITSTATUS(status), out};
+}
+
+}  // namespace
+
+TEST(CompareCommand, ReportsMeanAndIntervalPerHeuristicWithValidation) {
+  const Output r = run_cli("compare --scene random-triangles --n 80 --heuristics first,random --seeds 3 "
+                           "--views 2 --rays 50 --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["seeds"], nlohmann::json({1, 2, 3}));
+  ASSERT_EQ(j["heuristics"].size(), 2u);
+  for (const auto& h : j["heuristics"]) {
+    const auto& e = h["metrics"]["e_point"];
+    EXPECT_EQ(e["n"], 3);
+    EXPECT_LE(e["ci95"][0].get<double>(), e["mean"].get<double>());
+    EXPECT_GE(e["ci95"][1].get<double>(), e["mean"].get<double>());
+    EXPECT_EQ(h["validation"]["failures"], 0);
+    EXPECT_GT(h["validation"]["order_rays"].get<int>(), 0);
+    EXPECT_GT(h["validation"]["ray_shoot_rays"].get<int>(), 0);
+    EXPECT_EQ(h["runs"].size(), 3u);
+  }
+}
+
+TEST(CompareCommand, BadArgumentsExitWithTwo) {
+  EXPECT_EQ(run_cli("compare --scene random-triangles --heuristics nosuch").code, 2);
+  EXPECT_EQ(run_cli("compare --scene random-triangles --heuristics all --seeds 0").code, 2);
+  EXPECT_EQ(run_cli("compare --scene random-triangles --heuristics all --cell-margin -1").code, 2);
+}
