@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include "common/errors.h"
 #include "geometry/tolerance.h"
@@ -17,12 +18,14 @@ namespace bsp {
 
 namespace {
 
+std::string extension_of(const std::string& path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
 void check_readable(const std::string& path) {
-  const std::string ext = [&] {
-    std::string e = std::filesystem::path(path).extension().string();
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
-    return e;
-  }();
+  const std::string ext = extension_of(path);
   if (ext != ".obj" && ext != ".off" && ext != ".ply" && ext != ".stl")
     throw InputError(path + ": unsupported file type '" + ext + "' (expected .obj, .off, .ply or .stl)");
   std::error_code ec;
@@ -44,13 +47,37 @@ Box soup_bounds(const std::string& path, const PolygonSoup& soup) {
   return b;
 }
 
+// CGAL rejects a text mesh without saying why; name the two usual reasons, a non-finite number
+// (nan, inf, or one like 1e400 that overflows) and an OBJ without faces. Empty when neither.
+std::string diagnose_rejected_text_mesh(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  bool obj_face = false;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    std::istringstream tokens(line);
+    std::string token;
+    while (tokens >> token) {
+      char* end = nullptr;
+      const double value = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() + token.size() && !std::isfinite(value))
+        return "line " + std::to_string(number) + " has a non-finite (NaN or infinite) coordinate '" + token + "'";
+    }
+    obj_face |= line.rfind("f ", 0) == 0;
+  }
+  if (extension_of(path) == ".obj" && !obj_face) return "the file has no faces";
+  return {};
+}
+
 }  // namespace
 
 Scene read_mesh(const std::string& path) {
   check_readable(path);
   PolygonSoup soup;
   std::string error;
-  if (!read_polygon_soup_cgal(path, soup, error)) throw InputError(path + ": malformed mesh (" + error + ")");
+  if (!read_polygon_soup_cgal(path, soup, error)) {
+    const std::string reason = diagnose_rejected_text_mesh(path);
+    throw InputError(path + ": " + (reason.empty() ? "malformed mesh (" + error + ")" : reason));
+  }
   const Tolerance tol = Tolerance::for_extent(soup_bounds(path, soup).diagonal());
   Scene scene;
   scene.name = "file:" + path;
