@@ -49,11 +49,14 @@ void emit_convex_leaf(const Tree& tree, const Node& node, const Vec3& eye, Order
   }
 }
 
-}  // namespace detail
+// Which subtrees of an internal node a walk enters: both (in visibility order, with the node's own
+// fragments between them), or only one, skipping the other and the node's fragments.
+enum class Visit : std::uint8_t { Both, FrontOnly, BackOnly };
 
-// Calls emit(fragment index) for every fragment exactly once, in the requested order.
-template <class Emit>
-TraversalCounters traverse(const Tree& tree, const Vec3& eye, Order order, Emit&& emit) {
+// The walk shared by the full and the culled traversal (traverse_culled.h). `rule(plane, counters)`
+// says which subtrees of an internal node to enter, counting any plane evaluations it makes.
+template <class Emit, class Rule>
+TraversalCounters walk(const Tree& tree, const Vec3& eye, Order order, Emit& emit, Rule&& rule) {
   TraversalCounters c;
   if (tree.empty()) return c;
   struct Step {
@@ -75,11 +78,18 @@ TraversalCounters traverse(const Tree& tree, const Vec3& eye, Order order, Emit&
     }
     ++c.nodes_visited;
     if (node.is_cell_leaf()) {
-      detail::emit_convex_leaf(tree, node, eye, order, emit, c);
+      emit_convex_leaf(tree, node, eye, order, emit, c);
+      continue;
+    }
+    const Plane& plane = tree.planes[node.plane];
+    const Visit visit = rule(plane, c);
+    if (visit != Visit::Both) {
+      const std::uint32_t only = visit == Visit::FrontOnly ? node.front : node.back;
+      if (only != kNull) stack.push_back({only, false});
       continue;
     }
     ++c.plane_evals;
-    const bool eye_in_front = tree.planes[node.plane].distance(eye) >= -eps;
+    const bool eye_in_front = plane.distance(eye) >= -eps;
     // Back to front: far side first. The far side of an eye in front is the back subtree.
     const bool back_first = eye_in_front == (order == Order::BackToFront);
     const std::uint32_t first = back_first ? node.back : node.front;
@@ -89,6 +99,14 @@ TraversalCounters traverse(const Tree& tree, const Vec3& eye, Order order, Emit&
     if (first != kNull) stack.push_back({first, false});
   }
   return c;
+}
+
+}  // namespace detail
+
+// Calls emit(fragment index) for every fragment exactly once, in the requested order.
+template <class Emit>
+TraversalCounters traverse(const Tree& tree, const Vec3& eye, Order order, Emit&& emit) {
+  return detail::walk(tree, eye, order, emit, [](const Plane&, TraversalCounters&) { return detail::Visit::Both; });
 }
 
 std::vector<std::uint32_t> visibility_order(const Tree& tree, const Vec3& eye, Order order,

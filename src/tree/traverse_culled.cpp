@@ -42,16 +42,16 @@ bool Frustum::contains(const Vec3& p, double margin) const {
 
 namespace detail {
 
-FrustumSide frustum_side(const Plane& plane, const std::array<Vec3, 8>& corners, double eps, std::uint64_t& evals) {
+Visit frustum_side(const Plane& plane, const std::array<Vec3, 8>& corners, double eps, std::uint64_t& evals) {
   bool front = true, back = true;  // every corner tested so far is strictly in front / behind
   for (const Vec3& p : corners) {
     ++evals;
     const double d = plane.distance(p);
     front &= d > eps;
     back &= d < -eps;
-    if (!front && !back) return FrustumSide::Both;
+    if (!front && !back) return Visit::Both;
   }
-  return front ? FrustumSide::Front : FrustumSide::Back;
+  return front ? Visit::FrontOnly : Visit::BackOnly;
 }
 
 }  // namespace detail

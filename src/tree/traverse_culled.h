@@ -39,11 +39,9 @@ struct Frustum {
 
 namespace detail {
 
-enum class FrustumSide : std::uint8_t { Front, Back, Both };
-
-// Where the frustum's corners lie with respect to the plane (strictly beyond eps); stops as soon as
-// it has seen both sides. Adds the number of corners tested to `evals`.
-FrustumSide frustum_side(const Plane& plane, const std::array<Vec3, 8>& corners, double eps, std::uint64_t& evals);
+// FrontOnly (BackOnly) when every corner of the frustum lies strictly in front of (behind) the plane
+// beyond eps, else Both; stops as soon as it has seen both sides. Adds the corners tested to `evals`.
+Visit frustum_side(const Plane& plane, const std::array<Vec3, 8>& corners, double eps, std::uint64_t& evals);
 
 }  // namespace detail
 
@@ -52,47 +50,11 @@ FrustumSide frustum_side(const Plane& plane, const std::array<Vec3, 8>& corners,
 // where the frustum straddles a plane, one per fragment of a visited coarse leaf), fragments emitted.
 template <class Emit>
 TraversalCounters traverse_culled(const Tree& tree, const Frustum& frustum, Emit&& emit) {
-  TraversalCounters c;
-  if (tree.empty()) return c;
-  struct Step {
-    std::uint32_t node;
-    bool emit_only;  // the node's subtrees are already scheduled; only its fragments remain
-  };
   const std::array<Vec3, 8> corners = frustum.corners();
   const double eps = tree.tol.plane_eps;
-  std::vector<Step> stack{{0, false}};
-  while (!stack.empty()) {
-    const Step step = stack.back();
-    stack.pop_back();
-    const Node& node = tree.nodes[step.node];
-    if (step.emit_only) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-        ++c.fragments_emitted;
-        emit(i);
-      }
-      continue;
-    }
-    ++c.nodes_visited;
-    if (node.is_cell_leaf()) {
-      detail::emit_convex_leaf(tree, node, frustum.eye, Order::BackToFront, emit, c);
-      continue;
-    }
-    const Plane& plane = tree.planes[node.plane];
-    const detail::FrustumSide side = detail::frustum_side(plane, corners, eps, c.plane_evals);
-    if (side != detail::FrustumSide::Both) {
-      const std::uint32_t only = side == detail::FrustumSide::Front ? node.front : node.back;
-      if (only != kNull) stack.push_back({only, false});
-      continue;
-    }
-    ++c.plane_evals;
-    const bool eye_in_front = plane.distance(frustum.eye) >= -eps;
-    const std::uint32_t far_side = eye_in_front ? node.back : node.front;
-    const std::uint32_t near_side = eye_in_front ? node.front : node.back;
-    if (near_side != kNull) stack.push_back({near_side, false});
-    stack.push_back({step.node, true});
-    if (far_side != kNull) stack.push_back({far_side, false});
-  }
-  return c;
+  return detail::walk(tree, frustum.eye, Order::BackToFront, emit, [&](const Plane& plane, TraversalCounters& c) {
+    return detail::frustum_side(plane, corners, eps, c.plane_evals);
+  });
 }
 
 std::vector<std::uint32_t> culled_visibility_order(const Tree& tree, const Frustum& frustum,
