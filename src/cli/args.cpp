@@ -68,6 +68,13 @@ std::optional<double> Args::real(std::string_view name) {
   return value;
 }
 
+std::vector<std::string> Args::positional() {
+  std::vector<std::string> taken, rest;
+  for (auto& a : args_) (a.rfind("--", 0) == 0 ? rest : taken).push_back(std::move(a));
+  args_ = std::move(rest);
+  return taken;
+}
+
 void Args::finish() const {
   if (!args_.empty()) throw UsageError("unexpected argument '" + args_.front() + "'");
 }

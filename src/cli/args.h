@@ -19,6 +19,8 @@ class Args {
   // Typed readers; a malformed value is a UsageError naming the option.
   std::optional<long long> integer(std::string_view name, long long min, long long max);
   std::optional<double> real(std::string_view name);
+  // Takes the arguments not starting with "--"; call after every option has been taken.
+  std::vector<std::string> positional();
   void finish() const;
 
  private:

@@ -9,6 +9,10 @@ const std::vector<Command>& commands() {
       heuristics_command(),
       scenes_command(),
       generate_command(),
+      sweep_command(),
+      merge_reports_command(),
+      regress_command(),
+      report_command(),
       order_command(),
       validate_command(),
   };

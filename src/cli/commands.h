@@ -23,6 +23,10 @@ Command compare_command();
 Command heuristics_command();
 Command scenes_command();
 Command generate_command();
+Command sweep_command();
+Command merge_reports_command();
+Command regress_command();
+Command report_command();
 Command order_command();
 Command validate_command();
 

@@ -1,0 +1,242 @@
+#!/usr/bin/python3
+"""Render a bspbench sweep report (analysis/SCHEMA.md) as an HTML page with plots.
+
+    /usr/bin/python3 analysis/report.py --in results/report.json --out results/report
+
+(`bspbench report --in FILE --out DIR` runs this.) Writes DIR/index.html and, per scene, two PNG
+plots it links:
+  * pareto-SCENE.png: fragments against maximum depth at the largest size, coloured by E_line,
+    one point per heuristic (and shape); the heuristics no other beats on all three (lower is
+    better on each) are ringed and named in the page;
+  * scaling-SCENE.png: build time and fragments against the polygon count on log-log axes, with
+    each heuristic's fitted growth exponent in the legend.
+Then a table of every metric and timing: mean and 95% interval over seeds, per heuristic and size.
+
+Needs matplotlib (Debian: python3-matplotlib; call /usr/bin/python3, a pyenv python3 may lack it).
+Exit status: 0 written, 2 bad input (unreadable file, not a bspbench report, other version).
+"""
+import argparse
+import html
+import json
+import os
+import re
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display
+import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
+
+SCHEMA = "bspbench-report"
+VERSION = 1
+# The three axes of the Pareto view, all "lower is better" (issue 5: fragments vs depth vs E_line).
+PARETO_AXES = ("fragments", "max_depth", "e_line")
+SCALING_AXES = (("timings", "build_cpu_seconds", "build CPU time (s)"), ("metrics", "fragments", "fragments"))
+DPI = 100
+
+
+def fail(message):
+    print("report.py: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+def load(path):
+    try:
+        with open(path, encoding="utf-8") as f:
+            report = json.load(f)
+    except (OSError, ValueError) as e:
+        fail(f"{path}: cannot read a JSON report ({e})")
+    if not isinstance(report, dict) or report.get("schema") != SCHEMA:
+        fail(f"{path}: not a bspbench report")
+    if report.get("version") != VERSION:
+        fail(f"{path}: report version {report.get('version')}, this script reads version {VERSION}")
+    return report
+
+
+def label(agg, params_vary=False):
+    """The heuristic, with the shape when not strict and the scene parameters when they vary."""
+    extra = "" if agg["shape"] == "strict" else f" ({agg['shape']})"
+    params = agg.get("scene_params") or {}
+    if params_vary and params:
+        extra += " [" + ",".join(f"{k}={v}" for k, v in sorted(params.items())) + "]"
+    return agg["heuristic"] + extra
+
+
+def slug(text):
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", text)
+
+
+def by_scene(report):
+    """Scene -> its aggregates, each given a "label" that tells it from the others of the scene."""
+    scenes = {}
+    for agg in report["aggregates"]:
+        scenes.setdefault(agg["scene"], []).append(agg)
+    for aggs in scenes.values():
+        vary = len({json.dumps(a.get("scene_params"), sort_keys=True) for a in aggs}) > 1
+        for a in aggs:
+            a["label"] = label(a, vary)
+    return dict(sorted(scenes.items()))
+
+
+def mean_of(entry, section, field):
+    s = entry.get(section, {}).get(field)
+    return None if s is None else s.get("mean")
+
+
+def pareto_rows(aggs):
+    """(label, values) at each group's largest size, for the axes every group has."""
+    axes = [a for a in PARETO_AXES if all(mean_of(g["by_n"][-1], "metrics", a) is not None for g in aggs)]
+    rows = [(g["label"], [mean_of(g["by_n"][-1], "metrics", a) for a in axes]) for g in aggs if g["by_n"]]
+    return axes, rows
+
+
+def non_dominated(rows):
+    """Labels of the rows no other row beats: at most equal on every axis and lower on one."""
+    def beats(a, b):
+        return all(x <= y for x, y in zip(a, b)) and any(x < y for x, y in zip(a, b))
+    return {name for name, v in rows if not any(beats(w, v) for other, w in rows if other != name)}
+
+
+def plot_pareto(scene, aggs, path):
+    axes, rows = pareto_rows(aggs)
+    front = non_dominated(rows)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    xs = [v[0] for _, v in rows]
+    ys = [v[1] for _, v in rows]
+    colour = [v[2] for _, v in rows] if len(axes) == 3 else None
+    points = ax.scatter(xs, ys, c=colour, cmap="viridis", s=60, zorder=2)
+    if colour is not None:
+        fig.colorbar(points, ax=ax, label=axes[2] + " (mean)")
+    for (name, v), x, y in zip(rows, xs, ys):
+        on_front = name in front
+        if on_front:
+            ax.scatter([x], [y], s=200, facecolors="none", edgecolors="red", linewidths=1.5, zorder=3)
+        ax.annotate(name, (x, y), textcoords="offset points", xytext=(6, 4), fontsize=8,
+                    fontweight="bold" if on_front else "normal")
+    sizes = sorted({g["by_n"][-1]["n"] for g in aggs if g["by_n"]})
+    ax.set_xscale("log")
+    ax.margins(x=0.2, y=0.1)  # room for the names of the outermost points
+    ax.set_xlabel(axes[0] + " (mean over seeds)")
+    ax.set_ylabel(axes[1] + " (mean over seeds)")
+    ax.set_title(f"{scene}, n = {', '.join(map(str, sizes))}: red rings = not beaten on all of "
+                 + ", ".join(axes), fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    return axes, rows, front
+
+
+def growth_text(agg, section, field):
+    fits = agg.get("timing_growth" if section == "timings" else "growth", {})
+    fit = fits.get(field)
+    return "" if fit is None else f" (k={fit['exponent']:.2f}, R²={fit['r2']:.2f})"
+
+
+def plot_scaling(scene, aggs, path):
+    fig, axes = plt.subplots(1, len(SCALING_AXES), figsize=(12, 4.5))
+    for ax, (section, field, title) in zip(axes, SCALING_AXES):
+        for agg in aggs:
+            pts = [(e["n_polygons"]["mean"], mean_of(e, section, field)) for e in agg["by_n"]]
+            pts = [(x, y) for x, y in pts if y is not None and x > 0 and y > 0]
+            if pts:
+                ax.plot(*zip(*pts), marker="o", label=agg["label"] + growth_text(agg, section, field))
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("polygons (n)")
+        ax.set_ylabel(title)
+        ax.set_title(f"{scene}: {title} against n, log-log", fontsize=9)
+        ax.grid(True, which="both", alpha=0.3)
+        if ax.lines:
+            ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def cell(summary):
+    if summary is None:
+        return ""
+    mean = summary["mean"]
+    ci = summary.get("ci95")
+    text = f"{mean:.4g}"
+    if ci is not None and ci[1] > ci[0]:
+        text += f" ± {(ci[1] - ci[0]) / 2:.2g}"
+    return html.escape(text)
+
+
+def metric_table(aggs):
+    names = sorted({(s, k) for g in aggs for e in g["by_n"] for s in ("metrics", "timings") for k in e[s]})
+    head = "".join(f"<th>{html.escape(k)}</th>" for _, k in names)
+    rows = []
+    for g in aggs:
+        for e in g["by_n"]:
+            cells = "".join(f"<td>{cell(e[s].get(k))}</td>" for s, k in names)
+            rows.append(f"<tr><td>{html.escape(g['label'])}</td><td>{e['n']}</td><td>{e['runs']}</td>"
+                        f"<td>{e['validation_violations']}</td>{cells}</tr>")
+    return ("<div class=scroll><table><tr><th>heuristic</th><th>n</th><th>runs</th><th>validation violations</th>"
+            + head + "</tr>" + "".join(rows) + "</table></div>")
+
+
+def growth_table(aggs):
+    def fit(f):
+        return "" if f is None else f"{f['exponent']:.3f} (R² {f['r2']:.3f})"
+    rows = "".join(
+        f"<tr><td>{html.escape(g['label'])}</td><td>{fit(g['timing_growth'].get('build_cpu_seconds'))}</td>"
+        f"<td>{fit(g['growth'].get('fragments'))}</td><td>{fit(g['growth'].get('nodes'))}</td></tr>" for g in aggs)
+    return ("<table><tr><th>heuristic</th><th>build CPU time exponent</th><th>fragments exponent</th>"
+            "<th>nodes exponent</th></tr>" + rows + "</table>")
+
+
+def header(report):
+    env = "".join(
+        f"<li>shard {s['index']}/{s['count']}: {html.escape(json.dumps(s.get('environment', {})))}, calibration "
+        f"{s.get('calibration', {}).get('seconds', float('nan')):.4g} s</li>" for s in report["shards"])
+    summary = html.escape(json.dumps(report.get("summary", {})))
+    suite = report["suite"]
+    return (f"<h1>bspbench report: suite {html.escape(suite['name'])}</h1>"
+            f"<p>definition {html.escape(suite['definition_hash'])}, {suite['jobs']} jobs; summary {summary}</p>"
+            f"<ul>{env}</ul>"
+            "<p>Intervals are 95% Student-t intervals over seeds (± half-width). Growth exponents k fit "
+            "y = c·n^k by least squares on log-log axes over every run.</p>")
+
+
+STYLE = ("<style>body{font-family:sans-serif;margin:1em 2em}table{border-collapse:collapse;font-size:12px}"
+         "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}th{background:#eee}"
+         ".scroll{overflow-x:auto}img{max-width:100%}</style>")
+
+
+def scene_section(scene, aggs, out_dir):
+    pareto_png, scaling_png = f"pareto-{slug(scene)}.png", f"scaling-{slug(scene)}.png"
+    axes, _, front = plot_pareto(scene, aggs, os.path.join(out_dir, pareto_png))
+    plot_scaling(scene, aggs, os.path.join(out_dir, scaling_png))
+    return (f"<h2 id='{slug(scene)}'>{html.escape(scene)}</h2>"
+            f"<p>Not beaten on all of {', '.join(axes)}: <b>{html.escape(', '.join(sorted(front)))}</b></p>"
+            f"<img src='{pareto_png}' alt='Pareto view for {html.escape(scene)}'>"
+            f"<img src='{scaling_png}' alt='log-log scaling for {html.escape(scene)}'>"
+            f"<h3>Growth</h3>{growth_table(aggs)}<h3>Every metric</h3>{metric_table(aggs)}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--in", dest="input", required=True)
+    parser.add_argument("--out", required=True)
+    args = parser.parse_args()
+    report = load(args.input)
+    try:
+        os.makedirs(args.out, exist_ok=True)
+    except OSError as e:
+        fail(f"{args.out}: cannot create the output directory ({e})")
+    scenes = by_scene(report)
+    toc = "".join(f"<li><a href='#{slug(s)}'>{html.escape(s)}</a></li>" for s in scenes)
+    body = "".join(scene_section(s, aggs, args.out) for s, aggs in scenes.items())
+    page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>bspbench report</title>{STYLE}</head>"
+            f"<body>{header(report)}<ul>{toc}</ul>{body}</body></html>\n")
+    tmp = os.path.join(args.out, "index.html.tmp")
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write(page)
+    os.replace(tmp, os.path.join(args.out, "index.html"))
+
+
+if __name__ == "__main__":
+    main()

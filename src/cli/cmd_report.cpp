@@ -1,0 +1,75 @@
+// bspbench report: render a report as an HTML page with plots, by running analysis/report.py with
+// Debian's Python (it has matplotlib; a pyenv python3 on PATH may not).
+//
+// The script is looked up in BSPBENCH_SOURCE_DIR/analysis (the source tree this binary was built
+// from, a compile definition), then in analysis/ next to the executable (for a copied or installed
+// binary). The interpreter is /usr/bin/python3 unless the BSPBENCH_PYTHON environment variable
+// names another one.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "common/errors.h"
+#include "sweep/report.h"
+
+namespace bsp::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kDefaultPython = "/usr/bin/python3";
+
+fs::path find_script() {
+  const fs::path in_source = fs::path(BSPBENCH_SOURCE_DIR) / "analysis" / "report.py";
+  if (fs::exists(in_source)) return in_source;
+  std::error_code ec;
+  const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path() / "analysis" / "report.py";
+  if (!ec && fs::exists(beside)) return beside;
+  throw InputError("cannot find analysis/report.py (looked in " + in_source.string() + " and " + beside.string() + ")");
+}
+
+// Runs argv; returns its exit status (128 + signal when killed).
+int spawn(const std::vector<std::string>& argv) {
+  std::vector<char*> c_argv;
+  for (const auto& a : argv) c_argv.push_back(const_cast<char*>(a.c_str()));
+  c_argv.push_back(nullptr);
+  std::cout.flush();
+  const pid_t pid = ::fork();
+  if (pid < 0) throw InputError(std::string("cannot start ") + argv[0] + ": " + std::strerror(errno));
+  if (pid == 0) {
+    ::execv(c_argv[0], c_argv.data());
+    std::cerr << "bspbench report: cannot run " << argv[0] << ": " << std::strerror(errno) << "\n";
+    ::_exit(127);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) throw InputError(std::string("lost ") + argv[0] + ": " + std::strerror(errno));
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+int run(Args& args) {
+  const std::string in = args.required("--in");
+  const std::string out = args.required("--out");
+  args.finish();
+  sweep::read_report(in);  // a bad report is reported here, in one line, not as a Python traceback
+  const char* python = std::getenv("BSPBENCH_PYTHON");
+  const int status = spawn({python ? python : kDefaultPython, find_script().string(), "--in", in, "--out", out});
+  if (status == 0) std::cout << "report: wrote " << (fs::path(out) / "index.html").string() << "\n";
+  return status == 0 ? 0 : status == 2 ? 2 : 1;
+}
+
+}  // namespace
+
+Command report_command() {
+  return {"report", "--in REPORT.json --out DIR",
+          "render a sweep report as DIR/index.html with plots (runs analysis/report.py)", run};
+}
+
+}  // namespace bsp::cli

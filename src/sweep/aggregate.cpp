@@ -1,0 +1,117 @@
+#include "sweep/aggregate.h"
+
+#include <array>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "metrics/statistics.h"
+
+namespace bsp::sweep {
+
+namespace {
+
+// What the growth fits are taken of: fragments, nodes and build time, both the CPU time (steady on
+// a busy machine) and the builder's wall time.
+constexpr std::array<std::string_view, 2> kGrowthMetrics = {"fragments", "nodes"};
+constexpr std::array<std::string_view, 2> kGrowthTimings = {"build_cpu_seconds", "build_seconds"};
+
+struct Group {
+  nlohmann::json head;                                      // scene, heuristic, shape, scene_params
+  std::map<std::uint64_t, std::vector<const nlohmann::json*>> by_n;
+};
+
+nlohmann::json group_head(const nlohmann::json& id) {
+  nlohmann::json other = id["scene_params"];
+  other.erase("n");
+  other.erase("seed");
+  return {{"scene", id["scene"]}, {"heuristic", id["heuristic"]}, {"shape", id["shape"]}, {"scene_params", other}};
+}
+
+// Summary of every numeric field of `section` over the runs.
+nlohmann::json summarize_section(const std::vector<const nlohmann::json*>& runs, const char* section) {
+  std::map<std::string, std::vector<double>> samples;
+  for (const auto* r : runs)
+    for (const auto& [k, v] : (*r)[section].items())
+      if (v.is_number()) samples[k].push_back(v.get<double>());
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [k, xs] : samples) out[k] = to_json(summarize(xs));
+  return out;
+}
+
+std::uint64_t validation_violations(const std::vector<const nlohmann::json*>& runs) {
+  std::uint64_t total = 0;
+  for (const auto* r : runs) {
+    const auto& v = (*r)["validation"];
+    if (v.is_object()) total += v.value("violations", std::uint64_t{0});
+  }
+  return total;
+}
+
+nlohmann::json size_entry(std::uint64_t n, const std::vector<const nlohmann::json*>& runs) {
+  std::vector<double> polys;
+  for (const auto* r : runs) polys.push_back((*r)["id"]["n_polygons"].get<double>());
+  return {{"n", n},
+          {"runs", runs.size()},
+          {"n_polygons", to_json(summarize(polys))},
+          {"metrics", summarize_section(runs, "metrics")},
+          {"validation_violations", validation_violations(runs)},
+          {"timings", summarize_section(runs, "timings")}};
+}
+
+nlohmann::json growth(const Group& g, const char* section, std::string_view field) {
+  std::vector<double> x, y;
+  for (const auto& [n, runs] : g.by_n)
+    for (const auto* r : runs) {
+      const auto& v = (*r)[section];
+      if (!v.contains(field) || !v[std::string(field)].is_number()) continue;
+      x.push_back((*r)["id"]["n_polygons"].get<double>());
+      y.push_back(v[std::string(field)].get<double>());
+    }
+  try {
+    nlohmann::json fit = to_json(fit_power_law(x, y));
+    fit["points"] = x.size();
+    return fit;
+  } catch (const std::invalid_argument&) {
+    return nullptr;  // fewer than two sizes, or a zero value: no power law to fit
+  }
+}
+
+template <std::size_t K>
+nlohmann::json growth_section(const Group& g, const char* section, const std::array<std::string_view, K>& fields) {
+  nlohmann::json out = nlohmann::json::object();
+  for (auto f : fields) out[std::string(f)] = growth(g, section, f);
+  return out;
+}
+
+nlohmann::json group_json(const Group& g) {
+  nlohmann::json out = g.head;
+  nlohmann::json sizes = nlohmann::json::array();
+  for (const auto& [n, runs] : g.by_n) sizes.push_back(size_entry(n, runs));
+  out["by_n"] = std::move(sizes);
+  out["growth"] = growth_section(g, "metrics", kGrowthMetrics);
+  out["timing_growth"] = growth_section(g, "timings", kGrowthTimings);
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json aggregate_runs(const nlohmann::json& runs) {
+  // Key order makes every floating-point sum independent of the order runs finished in.
+  std::map<std::string, const nlohmann::json*> by_key;
+  for (const auto& r : runs) by_key[r["key"].get<std::string>()] = &r;
+  std::map<std::string, Group> groups;
+  for (const auto& [key, r] : by_key) {
+    nlohmann::json head = group_head((*r)["id"]);
+    Group& g = groups[head.dump()];
+    g.head = std::move(head);
+    g.by_n[(*r)["id"]["n"].get<std::uint64_t>()].push_back(r);
+  }
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& [key, g] : groups) out.push_back(group_json(g));
+  return out;
+}
+
+}  // namespace bsp::sweep

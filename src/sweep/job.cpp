@@ -1,0 +1,153 @@
+#include "sweep/job.h"
+
+#include <algorithm>
+#include <charconv>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "catalog.h"
+#include "common/errors.h"
+#include "common/hash.h"
+#include "split/registry.h"
+
+namespace bsp::sweep {
+
+namespace {
+
+const ParamSpec* find_spec(const GeneratorInfo& g, std::string_view name) {
+  for (const auto& p : g.params)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+// The sizes a block asks of generator g: its sizes within g's `n` range, or one run at the
+// defaults (size 0) when g has no `n`.
+std::vector<std::uint64_t> sizes_for(const GeneratorInfo& g, const SuiteBlock& block) {
+  const ParamSpec* n = find_spec(g, "n");
+  if (!n) return {0};
+  const std::vector<std::uint64_t>* sizes = &block.sizes;
+  for (const auto& o : block.scene_sizes)
+    if (o.scene == g.name) sizes = &o.sizes;
+  std::vector<std::uint64_t> out;
+  for (auto s : *sizes)
+    if (static_cast<double>(s) >= n->min && static_cast<double>(s) <= n->max) out.push_back(s);
+  return out;
+}
+
+std::vector<std::string> scene_names(const SuiteBlock& block) {
+  if (!block.scenes.empty()) return block.scenes;
+  std::vector<std::string> all;
+  for (const auto& g : generators()) all.push_back(g.name);
+  return all;
+}
+
+std::vector<std::string> heuristic_names(const SuiteBlock& block) {
+  if (!block.heuristics.empty()) return block.heuristics;
+  std::vector<std::string> all;
+  for (const auto& h : heuristics()) all.push_back(h.name);
+  return all;
+}
+
+Job make_job(const GeneratorInfo& g, const std::string& heuristic, Shape shape, std::uint64_t seed,
+             std::uint64_t n, std::uint32_t views) {
+  Job job{g.name, {}, heuristic, shape, seed, n, views, {}};
+  if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
+  if (find_spec(g, "seed")) job.scene_params.emplace_back("seed", std::to_string(seed));
+  assign_key(job);
+  return job;
+}
+
+void expand_block(const SuiteBlock& block, std::vector<Job>& out) {
+  for (const auto& scene : scene_names(block)) {
+    const GeneratorInfo& g = find_generator(scene);
+    for (auto n : sizes_for(g, block))
+      for (const auto& h : heuristic_names(block))
+        for (auto shape : block.shapes)
+          for (auto seed : block.seeds)
+            out.push_back(make_job(g, h, shape, seed, n, block.validation.views_for(n)));
+  }
+}
+
+const char* shape_name(Shape s) { return s == Shape::Coarse ? "coarse" : "strict"; }
+
+ParamSet scene_params(const Job& job) {
+  const GeneratorInfo& g = find_generator(job.scene);
+  return ParamSet::resolve(g.params, job.scene_params, "scene " + g.name);
+}
+
+ParamSet heuristic_params(const Job& job) {
+  const HeuristicInfo& h = find_heuristic(job.heuristic);
+  return ParamSet::resolve(h.params, {}, "heuristic " + h.name);
+}
+
+}  // namespace
+
+void assign_key(Job& job) {
+  Hasher h;
+  h.add_string(job.scene);
+  h.add_string(scene_params(job).canonical());
+  h.add_string(job.heuristic);
+  h.add_string(heuristic_params(job).canonical());
+  h.add_string(shape_name(job.shape));
+  h.add_u64(job.seed);
+  h.add_u64(job.validation_views);
+  job.key = h.hex();
+}
+
+std::vector<Job> expand(const Suite& suite) {
+  std::vector<Job> all;
+  for (const auto& block : suite.blocks) expand_block(block, all);
+  std::vector<Job> jobs;
+  std::set<std::string> seen;
+  for (auto& j : all)
+    if (seen.insert(j.key).second) jobs.push_back(std::move(j));
+  std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) {
+    return a.n != b.n ? a.n > b.n : a.key < b.key;
+  });
+  return jobs;
+}
+
+Shard parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  Shard s;
+  const auto parse = [&](std::string_view part, std::uint32_t& v) {
+    auto [ptr, ec] = std::from_chars(part.data(), part.data() + part.size(), v);
+    return ec == std::errc() && ptr == part.data() + part.size() && !part.empty();
+  };
+  const std::string_view all(text);
+  if (slash == std::string::npos || !parse(all.substr(0, slash), s.index) || !parse(all.substr(slash + 1), s.count) ||
+      s.count == 0 || s.index >= s.count)
+    throw UsageError("--shard wants i/N with 0 <= i < N, not '" + text + "'");
+  return s;
+}
+
+std::vector<Job> shard_jobs(const std::vector<Job>& jobs, Shard s) {
+  std::vector<Job> out;
+  for (std::size_t i = s.index; i < jobs.size(); i += s.count) out.push_back(jobs[i]);
+  return out;
+}
+
+std::string definition_hash(const std::string& suite_name, const std::vector<Job>& jobs) {
+  Hasher h;
+  h.add_string(suite_name);
+  h.add_u64(jobs.size());
+  for (const auto& j : jobs) h.add_string(j.key);
+  return h.hex();
+}
+
+nlohmann::json job_identity(const Job& job) {
+  std::string command = "bspbench build --scene " + job.scene;
+  if (job.n > 0) command += " --n " + std::to_string(job.n);
+  command += " --seed " + std::to_string(job.seed) + " --heuristic " + job.heuristic + " --shape " + shape_name(job.shape);
+  return {{"scene", job.scene},
+          {"scene_params", scene_params(job).to_json()},
+          {"heuristic", job.heuristic},
+          {"heuristic_params", heuristic_params(job).to_json()},
+          {"shape", shape_name(job.shape)},
+          {"seed", job.seed},
+          {"n", job.n},
+          {"validation_views", job.validation_views},
+          {"command", command}};
+}
+
+}  // namespace bsp::sweep

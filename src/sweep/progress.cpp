@@ -1,0 +1,46 @@
+#include "sweep/progress.h"
+
+#include <cstdio>
+#include <ostream>
+#include <string>
+
+namespace bsp::sweep {
+
+namespace {
+
+std::string clock_text(double seconds) {
+  const auto s = static_cast<long long>(seconds + 0.5);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%lld:%02lld:%02lld", s / 3600, s / 60 % 60, s % 60);
+  return buf;
+}
+
+}  // namespace
+
+Progress::Progress(std::ostream& out, bool terminal, std::uint64_t total_jobs, double total_weight)
+    : out_(out), terminal_(terminal), total_(total_jobs), total_weight_(total_weight),
+      start_(std::chrono::steady_clock::now()), last_print_(start_) {}
+
+void Progress::job_done(double weight) {
+  ++done_;
+  done_weight_ += weight;
+  if (terminal_ || std::chrono::steady_clock::now() - last_print_ >= kPlainInterval) print(false);
+}
+
+void Progress::finish() { print(true); }
+
+void Progress::print(bool final_line) {
+  last_print_ = std::chrono::steady_clock::now();
+  const double elapsed = std::chrono::duration<double>(last_print_ - start_).count();
+  const double rate = elapsed > 0 ? static_cast<double>(done_) / elapsed : 0.0;
+  const double fraction = total_weight_ > 0 ? done_weight_ / total_weight_ : 1.0;
+  std::string line = "sweep: " + std::to_string(done_) + "/" + std::to_string(total_) + " jobs";
+  char buf[96];
+  std::snprintf(buf, sizeof buf, ", %.2f jobs/s, elapsed %s", rate, clock_text(elapsed).c_str());
+  line += buf;
+  if (!final_line && fraction > 0) line += ", about " + clock_text(elapsed * (1 - fraction) / fraction) + " left";
+  if (terminal_) out_ << "\r\033[K" << line << (final_line ? "\n" : "") << std::flush;
+  else out_ << line << "\n" << std::flush;
+}
+
+}  // namespace bsp::sweep

@@ -1,0 +1,52 @@
+#pragma once
+// Sweep suites: named sets of runs (scene x size x heuristic x shape x seed). A suite names no
+// heuristic and, in its main block, no scene: it takes every entry of the registries, so a heuristic
+// or generator added there is swept without further wiring. Sizes are the generators' `n`
+// parameter; a generator without one runs once at its defaults, and a size outside a generator's
+// `n` range is skipped for it.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tree/tree.h"
+
+namespace bsp::sweep {
+
+// How much ray-cast validation each run gets (validate_tree's view count); bigger scenes get fewer
+// views so a suite stays within its time budget.
+struct ValidationPlan {
+  std::uint32_t views = 0;            // views for scenes up to `reduce_above` polygons; 0 = no validation
+  std::uint64_t reduce_above = 0;     // polygon count past which `reduced_views` apply
+  std::uint32_t reduced_views = 0;
+  std::uint32_t views_for(std::uint64_t n) const { return n > reduce_above ? reduced_views : views; }
+};
+
+// Sizes for one scene whose cost grows much faster than n log n (Omega(n^2) fragments), in place of
+// the block's common sizes.
+struct SceneSizes {
+  std::string scene;
+  std::vector<std::uint64_t> sizes;
+};
+
+struct SuiteBlock {
+  std::vector<std::string> scenes;      // empty: every generator in the catalog
+  std::vector<std::string> heuristics;  // empty: every registered heuristic
+  std::vector<std::uint64_t> sizes;
+  std::vector<SceneSizes> scene_sizes;  // overrides `sizes` for the scenes named
+  std::vector<std::uint64_t> seeds;
+  std::vector<Shape> shapes;
+  ValidationPlan validation;
+};
+
+struct Suite {
+  std::string name;
+  std::string summary;  // one line, with the measured run time
+  std::vector<SuiteBlock> blocks;
+};
+
+const std::vector<Suite>& suites();
+// Throws UsageError naming the known suites.
+const Suite& find_suite(std::string_view name);
+
+}  // namespace bsp::sweep

@@ -1,0 +1,137 @@
+// The sweep commands of the real bspbench binary: a suite run as three shards under GNU parallel
+// merges to the unsharded report in every deterministic field, and bad shard sets are rejected;
+// `report` renders every plot it links as a valid PNG; `regress` exits 0 on an identical report, 1
+// on a changed result and 2 on bad input.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "sweep/record.h"
+#include "sweep/report.h"
+#include "sweep/runner.h"
+
+using namespace bsp::sweep;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class SweepCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("bspbench_sweepcli_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs a shell command line with stdout and stderr captured; returns the exit status.
+  int shell(const std::string& line) {
+    const std::string cmd = "cd " + dir_.string() + " && " + line + " > stdout 2> stderr";
+    const int status = std::system(cmd.c_str());
+    out_ = slurp(dir_ / "stdout");
+    err_ = slurp(dir_ / "stderr");
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  int bspbench(const std::string& args) { return shell(std::string(BSPBENCH_EXE) + " " + args); }
+
+  // A small report made through the library: two scenes, two heuristics, two sizes, two seeds.
+  fs::path small_report() {
+    const Suite suite{"tiny", "test suite",
+                      {{{"random-triangles", "random-disjoint"}, {"first", "random"}, {40, 80}, {}, {1, 2},
+                        {bsp::Shape::Strict}, {1, 0, 1}}}};
+    SweepOptions o;
+    o.journal_dir = (dir_ / "journal").string();
+    const fs::path path = dir_ / "small.json";
+    write_report(path.string(), run_sweep(suite, o));
+    return path;
+  }
+
+  fs::path dir_;
+  std::string out_, err_;
+};
+
+// PNG signature (ISO/IEC 15948 §5.2) and a nonzero width and height in the IHDR chunk that must
+// follow it.
+bool is_png(const fs::path& p) {
+  const std::string bytes = slurp(p);
+  if (bytes.size() < 24 || bytes.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 || bytes.compare(12, 4, "IHDR") != 0)
+    return false;
+  const auto be32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+  };
+  return be32(16) > 0 && be32(20) > 0;
+}
+
+}  // namespace
+
+TEST_F(SweepCli, ThreeShardsUnderGnuParallelMergeToTheUnshardedReport) {
+  ASSERT_NE(bspbench("sweep --suite smoke --threads 2 --out full.json"), 2) << err_;
+  ASSERT_EQ(shell("parallel --will-cite --halt now,fail=1 '" + std::string(BSPBENCH_EXE) +
+                  " sweep --suite smoke --threads 1 --shard {}/3 --out shard{}.json; test $? -ne 2' ::: 0 1 2"),
+            0)
+      << err_;
+  ASSERT_EQ(bspbench("merge-reports --out merged.json shard0.json shard1.json shard2.json"), 0) << err_;
+  const auto full = read_report((dir_ / "full.json").string());
+  const auto merged = read_report((dir_ / "merged.json").string());
+  EXPECT_EQ(merged["shards"].size(), 3u);
+  EXPECT_GT(full["runs"].size(), 100u);
+  EXPECT_TRUE(deterministic_view(merged) == deterministic_view(full)) << "merged and unsharded reports differ";
+
+  EXPECT_EQ(bspbench("merge-reports --out bad.json shard0.json shard1.json shard1.json"), 2);
+  EXPECT_NE(err_.find("twice"), std::string::npos) << err_;
+  EXPECT_EQ(bspbench("merge-reports --out bad.json shard0.json shard2.json"), 2);
+  EXPECT_NE(err_.find("missing shard(s) 1/3"), std::string::npos) << err_;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.json"));
+}
+
+TEST_F(SweepCli, ReportRendersEveryLinkedPlotAsAValidPng) {
+  const fs::path report = small_report();
+  ASSERT_EQ(bspbench("report --in " + report.string() + " --out html"), 0) << err_;
+  const std::string page = slurp(dir_ / "html" / "index.html");
+  const std::regex img("<img src='([^']+)'");
+  std::size_t images = 0;
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), img); it != std::sregex_iterator(); ++it) {
+    ++images;
+    const fs::path png = dir_ / "html" / (*it)[1].str();
+    EXPECT_TRUE(fs::exists(png) && fs::file_size(png) > 0 && is_png(png)) << png;
+  }
+  EXPECT_EQ(images, 4u);  // a Pareto view and a scaling plot for each of the two scenes
+  // A corrupted image is caught by the check above.
+  std::ofstream(dir_ / "fake.png") << "\x89PNG\r\n\x1a\nnot really";
+  EXPECT_FALSE(is_png(dir_ / "fake.png"));
+  std::ofstream(dir_ / "bad.json") << "[1, 2]";
+  EXPECT_EQ(bspbench("report --in bad.json --out html2"), 2);
+}
+
+TEST_F(SweepCli, RegressExitsZeroOnIdenticalOneOnChangedAndTwoOnBadInput) {
+  const fs::path base = small_report();
+  EXPECT_EQ(bspbench("regress --baseline " + base.string() + " --current " + base.string()), 0) << out_ << err_;
+  EXPECT_NE(out_.find("no regression"), std::string::npos) << out_;
+
+  nlohmann::json changed = read_report(base.string());
+  auto& fragments = changed["runs"][0]["metrics"]["fragments"];
+  fragments = fragments.get<std::uint64_t>() + 1;
+  write_report((dir_ / "changed.json").string(), changed);
+  EXPECT_EQ(bspbench("regress --baseline " + base.string() + " --current changed.json"), 1);
+  EXPECT_NE(out_.find("metrics.fragments"), std::string::npos) << out_;
+
+  std::ofstream(dir_ / "garbage.json") << "{\"schema\": \"bspbench-report\", \"version\": 1}";
+  EXPECT_EQ(bspbench("regress --baseline " + base.string() + " --current garbage.json"), 2);
+  EXPECT_EQ(bspbench("regress --baseline " + base.string() + " --current " + base.string() + " --time-tolerance 1"), 2);
+}
