@@ -13,21 +13,13 @@
 #include <sstream>
 #include <string>
 
+#include "cli_runner.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliResult {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using bsp::testing::CliResult;
 
 class Cli : public ::testing::Test {
  protected:
@@ -45,12 +37,7 @@ class Cli : public ::testing::Test {
     return p;
   }
 
-  CliResult run(const std::string& args) const {
-    const std::string cmd = std::string(BSPBENCH_EXE) + " " + args + " > " + (dir_ / "stdout").string() + " 2> " +
-                            (dir_ / "stderr").string();
-    const int status = std::system(cmd.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
-  }
+  CliResult run(const std::string& args) const { return bsp::testing::run_bspbench(args, dir_); }
 
   // `order` and `validate` on a bad input file: exit 2, one stderr line naming the file and
   // containing `problem`, nothing written.

@@ -4,6 +4,8 @@
 // no valid order of whole polygons; near-degenerate drops exactly its sub-tolerance polygons), every
 // scene passing the Embree order validation with two heuristics, and bad parameters rejected.
 #include <gtest/gtest.h>
+
+#include "cli_runner.h"
 #include <omp.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -399,20 +401,9 @@ TEST(BadSceneParameters, MakeSceneThrowsUsageError) {
 
 namespace {
 
-struct CliRun {
-  int code;
-  std::string err;
-};
+using CliRun = bsp::testing::CliResult;
 
-CliRun run_cli(const std::string& args, const fs::path& dir) {
-  const fs::path err = dir / "stderr";
-  const std::string cmd = std::string(BSPBENCH_EXE) + " " + args + " > /dev/null 2> " + err.string();
-  const int status = std::system(cmd.c_str());
-  std::ifstream in(err);
-  std::stringstream s;
-  s << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, s.str()};
-}
+CliRun run_cli(const std::string& args, const fs::path& dir) { return bsp::testing::run_bspbench(args, dir); }
 
 }  // namespace
 

@@ -3,6 +3,8 @@
 // zero-area and repeated-vertex faces dropped and counted, the CLI's one-line warning about it,
 // OBJ output that reads back exactly, and the real CGAL sample meshes (skipped when not fetched).
 #include <gtest/gtest.h>
+
+#include "cli_runner.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -209,24 +211,10 @@ TEST(ConvexPlanar, TellsConvexPlanarFromNonConvexNonPlanarAndSelfCrossing) {
 
 namespace {
 
-struct CliRun {
-  int code;
-  std::string out, err;
-};
+using CliRun = bsp::testing::CliResult;
+using bsp::testing::slurp;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-CliRun run_cli(const std::string& args, const fs::path& dir) {
-  const std::string cmd = std::string(BSPBENCH_EXE) + " " + args + " > " + (dir / "stdout").string() + " 2> " +
-                          (dir / "stderr").string();
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "stdout"), slurp(dir / "stderr")};
-}
+CliRun run_cli(const std::string& args, const fs::path& dir) { return bsp::testing::run_bspbench(args, dir); }
 
 }  // namespace
 

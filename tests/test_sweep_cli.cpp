@@ -3,6 +3,8 @@
 // `report` renders every plot it links as a valid PNG; `regress` exits 0 on an identical report, 1
 // on a changed result and 2 on bad input.
 #include <gtest/gtest.h>
+
+#include "cli_runner.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,12 +23,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using bsp::testing::slurp;
 
 class SweepCli : public ::testing::Test {
  protected:
