@@ -24,30 +24,7 @@ namespace bsp::bench {
 
 namespace {
 
-constexpr std::uint64_t kSeed = 1;
-constexpr std::uint32_t kViews = 8;   // as MetricsSettings' default
 constexpr std::uint32_t kRays = 1000;  // as MetricsSettings' default
-
-void bm_build(benchmark::State& state, const Scene* s, std::string h) {
-  for (auto _ : state) {
-    auto splitter = make_splitter(h, {}, kSeed);
-    const Tree t = build_tree(s->polygons, *splitter);
-    benchmark::DoNotOptimize(t.nodes.data());
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(s->polygons.size()));
-  tree(*s, h, kSeed);
-  set_tree_counters(state);
-}
-
-void bm_traverse(benchmark::State& state, const Scene* s, std::string h) {
-  const Tree& t = tree(*s, h, kSeed);
-  const auto views = metric_views(t.bounds, kViews);
-  std::int64_t emitted = 0;
-  for (auto _ : state)
-    for (const auto& v : views) emitted += traverse(t, v.eye, Order::BackToFront, [](std::uint32_t) {}).fragments_emitted;
-  state.SetItemsProcessed(emitted);
-  set_tree_counters(state);
-}
 
 void bm_traverse_culled(benchmark::State& state, const Scene* s, std::string h) {
   const Tree& t = tree(*s, h, kSeed);

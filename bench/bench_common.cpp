@@ -11,10 +11,12 @@
 
 #include "catalog.h"
 #include "common/errors.h"
+#include "metrics/traversal_cost.h"
 #include "metrics/tree_metrics.h"
 #include "split/registry.h"
 #include "sweep/record.h"
 #include "tree/build.h"
+#include "tree/traverse.h"
 
 namespace bsp::bench {
 
@@ -136,6 +138,27 @@ int run_benchmarks(int argc, char** argv, const std::string& binary) {
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;
+}
+
+void bm_build(benchmark::State& state, const Scene* s, std::string h) {
+  for (auto _ : state) {
+    auto splitter = make_splitter(h, {}, kSeed);
+    const Tree t = build_tree(s->polygons, *splitter);
+    benchmark::DoNotOptimize(t.nodes.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(s->polygons.size()));
+  tree(*s, h, kSeed);
+  set_tree_counters(state);
+}
+
+void bm_traverse(benchmark::State& state, const Scene* s, std::string h) {
+  const Tree& t = tree(*s, h, kSeed);
+  const auto views = metric_views(t.bounds, kViews);
+  std::int64_t emitted = 0;
+  for (auto _ : state)
+    for (const auto& v : views) emitted += traverse(t, v.eye, Order::BackToFront, [](std::uint32_t) {}).fragments_emitted;
+  state.SetItemsProcessed(emitted);
+  set_tree_counters(state);
 }
 
 }  // namespace bsp::bench

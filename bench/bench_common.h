@@ -46,6 +46,15 @@ const Tree& tree(const Scene& scene, const std::string& heuristic, std::uint64_t
 // as a counter of `state`.
 void set_tree_counters(benchmark::State& state);
 
+// Seed and view count of every benchmark: the defaults of MetricsSettings.
+inline constexpr std::uint64_t kSeed = 1;
+inline constexpr std::uint32_t kViews = 8;
+
+// build_tree of scene `s` with heuristic `h`; items = input polygons; counters = the tree's metrics.
+void bm_build(benchmark::State& state, const Scene* s, std::string h);
+// Full back-to-front traversal from the kViews metric views; items = fragments emitted.
+void bm_traverse(benchmark::State& state, const Scene* s, std::string h);
+
 // Adds the git revision to the context and runs the benchmarks; returns main's exit code.
 int run_benchmarks(int argc, char** argv, const std::string& binary);
 

@@ -24,8 +24,6 @@ namespace bsp::bench {
 
 namespace {
 
-constexpr std::uint64_t kSeed = 1;
-constexpr std::uint32_t kViews = 8;
 constexpr double kDefaultSize = 0.1;   // random-triangles' default `size`
 constexpr double kDefaultN = 1000;     // the N at which it applies unchanged
 
@@ -33,27 +31,6 @@ std::string size_for(std::uint64_t n) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", kDefaultSize * std::cbrt(kDefaultN / static_cast<double>(n)));
   return buf;
-}
-
-void bm_build(benchmark::State& state, const Scene* s, std::string h) {
-  for (auto _ : state) {
-    auto splitter = make_splitter(h, {}, kSeed);
-    const Tree t = build_tree(s->polygons, *splitter);
-    benchmark::DoNotOptimize(t.nodes.data());
-  }
-  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(s->polygons.size()));
-  tree(*s, h, kSeed);
-  set_tree_counters(state);
-}
-
-void bm_traverse(benchmark::State& state, const Scene* s, std::string h) {
-  const Tree& t = tree(*s, h, kSeed);
-  const auto views = metric_views(t.bounds, kViews);
-  std::int64_t emitted = 0;
-  for (auto _ : state)
-    for (const auto& v : views) emitted += traverse(t, v.eye, Order::BackToFront, [](std::uint32_t) {}).fragments_emitted;
-  state.SetItemsProcessed(emitted);
-  set_tree_counters(state);
 }
 
 void register_all(const Selection& sel) {
