@@ -13,6 +13,8 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_runner.h"
 
 namespace fs = std::filesystem;
@@ -128,4 +130,20 @@ TEST_F(Cli, ValidatePrintsOneJsonObjectWithTheCounts) {
   EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1);
   for (const char* key : {"\"rays\":", "\"pairs_checked\":", "\"violations\":0", "\"rays_per_second\":", "\"heuristic\":"})
     EXPECT_NE(r.out.find(key), std::string::npos) << key;
+}
+
+TEST_F(Cli, EveryJsonOutputCarriesTheScenesHashAndBoundingBox) {
+  const std::string scene = "--scene city --n 60 --seed 4";
+  const std::string out = (dir_ / "out" / "run").string();
+  for (const std::string& command : std::vector<std::string>{
+           "build " + scene + " --heuristic first", "validate " + scene + " --heuristic first --views 1",
+           "order " + scene + " --heuristic first --eye 0,0,9 --out " + out, "generate " + scene + " --out " + out + ".obj",
+           "compare " + scene + " --heuristics first --seeds 2 --views 1"}) {
+    const CliResult r = run(command + " --json");
+    ASSERT_EQ(r.code, 0) << command << ": " << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const std::string text = j.dump();
+    EXPECT_NE(text.find("hash\":\""), std::string::npos) << command;
+    EXPECT_NE(text.find("bounds\":{\"hi\""), std::string::npos) << command;
+  }
 }

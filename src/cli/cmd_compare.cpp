@@ -131,14 +131,25 @@ nlohmann::json summarize_runs(const std::string& heuristic, const std::vector<Ru
           {"runs", std::move(per_seed)}};
 }
 
-nlohmann::json header(const CompareSpec& s, const Scene& first) {
+// Each seed makes its own scene: its seed, content hash and bounding box.
+nlohmann::json scene_instances(const CompareSpec& s, const std::vector<Scene>& scenes) {
+  nlohmann::json out = nlohmann::json::array();
+  for (std::uint64_t k = 0; k < scenes.size(); ++k) {
+    const nlohmann::json j = scene_json(scenes[k]);
+    out.push_back({{"seed", s.seed + k}, {"scene_hash", j["hash"]}, {"scene_bounds", j["bounds"]}});
+  }
+  return out;
+}
+
+nlohmann::json header(const CompareSpec& s, const std::vector<Scene>& scenes) {
   nlohmann::json seeds = nlohmann::json::array();
   for (std::uint64_t k = 0; k < s.seeds; ++k) seeds.push_back(s.seed + k);
-  nlohmann::json params = scene_json(first)["params"];
+  nlohmann::json params = scene_json(scenes.front())["params"];
   params.erase("seed");
   return {{"scene", s.scene},
           {"scene_params", params},
           {"seeds", seeds},
+          {"scenes", scene_instances(s, scenes)},
           {"shape", s.options.shape == Shape::Coarse ? "coarse" : "strict"},
           {"build", s.options.incremental ? "incremental" : "recursive"},
           {"order", s.options.order == InsertOrder::Shuffled ? "shuffled" : "given"},
@@ -179,7 +190,7 @@ int run(Args& args) {
   args.finish();
   std::vector<Scene> scenes;
   for (std::uint64_t k = 0; k < spec.seeds; ++k) scenes.push_back(scene_for(spec, spec.seed + k));
-  nlohmann::json out = header(spec, scenes.front());
+  nlohmann::json out = header(spec, scenes);
   out["heuristics"] = nlohmann::json::array();
   std::uint64_t failures = 0;
   for (const auto& h : spec.heuristics) {

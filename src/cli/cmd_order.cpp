@@ -80,7 +80,12 @@ int run(Args& args) {
   const std::string obj_path = prefix + ".obj", order_path = prefix + ".order.json";
   write_both(obj_path, fragments_obj(tree), order_path, order.dump() + "\n");
   if (json) {
-    std::cout << nlohmann::json{{"obj", obj_path}, {"order", order_path}, {"fragments", tree.fragments.size()}}.dump()
+    std::cout << nlohmann::json{{"obj", obj_path},
+                                {"order", order_path},
+                                {"fragments", tree.fragments.size()},
+                                {"scene_hash", order["scene_hash"]},
+                                {"scene_bounds", order["scene_bounds"]}}
+                     .dump()
               << "\n";
   } else {
     std::cout << "wrote " << obj_path << " and " << order_path << " (" << tree.fragments.size() << " fragments)\n";

@@ -51,7 +51,9 @@ nlohmann::json run_job(const Job& job) {
   split_timings(metrics, timings, "");
   nlohmann::json id = job_identity(job);
   id["n_polygons"] = scene.polygons.size();
-  id["scene_hash"] = content_hash(scene);
+  const nlohmann::json described = scene_json(scene);
+  id["scene_hash"] = described["hash"];
+  id["scene_bounds"] = described["bounds"];
   nlohmann::json record{{"key", job.key},
                         {"id", std::move(id)},
                         {"metrics", std::move(metrics)},
