@@ -94,9 +94,9 @@ class MeshFiles : public ::testing::Test {
     return s.str();
   }
 
-  std::string off() const {
+  // The vertex and face lines OFF and ASCII PLY share: "x y z", then "k i0 i1 ..." 0-based.
+  std::string vertices_and_faces() const {
     std::ostringstream s;
-    s << "OFF\n" << kPoints.size() << " " << kFaces.size() << " 0\n";
     for (const auto& p : kPoints) s << p.x << " " << p.y << " " << p.z << "\n";
     for (const auto& f : kFaces) {
       s << f.size();
@@ -106,17 +106,18 @@ class MeshFiles : public ::testing::Test {
     return s.str();
   }
 
+  std::string off() const {
+    std::ostringstream s;
+    s << "OFF\n" << kPoints.size() << " " << kFaces.size() << " 0\n" << vertices_and_faces();
+    return s.str();
+  }
+
   std::string ply() const {
     std::ostringstream s;
     s << "ply\nformat ascii 1.0\nelement vertex " << kPoints.size()
       << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << kFaces.size()
-      << "\nproperty list uchar int vertex_indices\nend_header\n";
-    for (const auto& p : kPoints) s << p.x << " " << p.y << " " << p.z << "\n";
-    for (const auto& f : kFaces) {
-      s << f.size();
-      for (int i : f) s << " " << i - 1;
-      s << "\n";
-    }
+      << "\nproperty list uchar int vertex_indices\nend_header\n"
+      << vertices_and_faces();
     return s.str();
   }
 
