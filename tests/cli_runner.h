@@ -1,6 +1,8 @@
 #pragma once
 // Running the real bspbench binary (BSPBENCH_EXE) from tests, with its exit code and output.
+#include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -20,6 +22,17 @@ inline std::string slurp(const std::filesystem::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// An empty scratch directory for the running test: PREFIX_<test name>_<pid> in the temp folder, so
+// parallel ctest runs never share one. The caller removes it.
+inline std::filesystem::path fresh_test_dir(const std::string& prefix) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const auto dir = std::filesystem::temp_directory_path() /
+                   (prefix + "_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 // Runs `bspbench ARGS` (ARGS is shell text), capturing stdout and stderr in files under `dir`.

@@ -26,9 +26,7 @@ using bsp::testing::CliResult;
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("bspbench_cli_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
+    dir_ = bsp::testing::fresh_test_dir("bspbench_cli");
     fs::create_directories(dir_ / "out");
   }
   void TearDown() override { fs::remove_all(dir_); }

@@ -28,10 +28,7 @@ using bsp::testing::slurp;
 class SweepCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("bspbench_sweepcli_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = bsp::testing::fresh_test_dir("bspbench_sweepcli");
   }
   void TearDown() override { fs::remove_all(dir_); }
 
