@@ -79,7 +79,7 @@ TEST(EmbreeScene, AllHitsSeeThroughEverythingSortedAndOncePerFragment) {
   // Through the edge x = 1 shared by squares 1 and 2 (a tie at t = 1), then the edge of square 0.
   const auto edge = scene.all_hits({{1.0, 0.3, -1}, {0, 0, 1}});
   ASSERT_EQ(edge.size(), 3u);
-  EXPECT_LE(std::abs(edge[0].t - edge[1].t), scene.tie_tolerance());
+  EXPECT_EQ(scene.tie_reason({{1.0, 0.3, -1}, {0, 0, 1}}, edge[0], edge[1]), TieReason::Edge);
   EXPECT_EQ(edge[0].fragment + edge[1].fragment, 3u);
   EXPECT_EQ(edge[2].fragment, 0u);
   EXPECT_FALSE(scene.first_hit({{5, 5, -1}, {0, 0, 1}}).has_value());
@@ -114,32 +114,77 @@ TEST(EmbreeScene, AGrazingNearMissAtASharedEdgeIsNotAHit) {
   EXPECT_EQ(check_order(scene, rays, a_then_b).violations, 0u);
 }
 
-// a: the unit square on z = 0. A ray descends toward a with slope c and crosses z = 0 just past a's
-// edge x = 1 (inside the boundary slack, so it counts as hitting a). b: a vertical square the ray
-// crosses 1.2 tie tolerances earlier. Drawing b before a contradicts this ray by more than the
-// tie tolerance; but when the ray grazes a's plane (c = 6e-4), a's depth is uncertain by the
-// slack divided by c, so the pair is a tie. A steep ray (c = 0.5) leaves no such doubt.
-std::uint64_t grazing_pair_violations(double c) {
-  const double delta = 0.5e-8;  // well inside kInsideRelative × diagonal (≈ 1.4e-8)
+// a: the unit square on z = 0. A ray descends toward a with slope c and crosses z = 0 just inside
+// a's edge x = 1 (closer to it than a hit radius). b: a vertical square standing on nothing, its
+// foot halfway between a's plane and the ray, which crosses b `gap` before a. Drawing b before a
+// contradicts the ray.
+OrderCheck separated_pair(double c, double gap) {
+  const double delta = -0.5e-9;  // plane_eps is 1.4e-9 for this box
   const double t_a = 2 + delta;
   const Vec3 origin{-1, 0.5, c * t_a}, dir{1, 0, -c};
+  const double x = -1 + t_a - gap, z = origin.z - c * (t_a - gap);
   const Polygon a = square(0, 0, 0);
-  const auto b_at = [&](double t_b) {
-    const double x = -1 + t_b, z = origin.z - c * t_b;
-    return Polygon{{{{x, 0, z / 2}, 0, 0}, {{x, 1, z / 2}, 0, 0}, {{x, 1, 0.1}, 0, 0}, {{x, 0, 0.1}, 0, 0}}, 1};
-  };
-  const double tie_t = EmbreeScene(std::vector<Polygon>{a, b_at(t_a)}).tie_tolerance() / length(dir);
-  const std::vector<Polygon> polys = {a, b_at(t_a - 1.2 * tie_t)};
+  const Polygon b{{{{x, 0, z / 2}, 0, 0}, {{x, 1, z / 2}, 0, 0}, {{x, 1, 0.1}, 0, 0}, {{x, 0, 0.1}, 0, 0}}, 1};
+  const std::vector<Polygon> polys = {a, b};
   const EmbreeScene scene(polys);
   const std::vector<Ray> rays = {{origin, dir}};
   EXPECT_EQ(scene.all_hits(rays[0]).size(), 2u);
   const std::vector<std::uint32_t> b_then_a = {1, 0};
-  return check_order(scene, rays, b_then_a).violations;
+  return check_order(scene, rays, b_then_a);
 }
 
-TEST(EmbreeScene, AHitGrazingItsPlaneTiesWithinItsDepthUncertaintyButASteepOneIsCaught) {
-  EXPECT_EQ(grazing_pair_violations(6e-4), 0u);
-  EXPECT_EQ(grazing_pair_violations(0.5), 1u);
+// Where the ray meets b more than 2 plane_eps above a's plane, the pair is judged, however flat the
+// ray and however close the hits along it (1e-7 is 70 plane_eps).
+TEST(EmbreeScene, HitsMoreThanTwoToleranceApartAreJudgedHoweverFlatTheRay) {
+  for (double gap : {1e-4, 1e-6, 1e-7}) EXPECT_EQ(separated_pair(0.5, gap).violations, 1u) << gap;
+  for (double gap : {1e-4, 1e-5}) EXPECT_EQ(separated_pair(6e-4, gap).violations, 1u) << gap;
+}
+
+// A flat ray meets b 6e-10 above a's plane (0.4 plane_eps), just above b's foot, which rests on a
+// within the tolerance: the ray meets them where they touch, an edge tie.
+TEST(EmbreeScene, AFlatRayThroughAFootRestingWithinTheToleranceIsAnEdgeTie) {
+  const OrderCheck c = separated_pair(6e-4, 1e-6);
+  EXPECT_EQ(c.violations, 0u);
+  EXPECT_EQ(c.ties_edge, 1u);
+}
+
+// a: the floor square z = 0. b: a wall standing on it along the line x = 0.5 (its bottom edge
+// rests on a's face, inside a). A ray meeting both where they touch is an edge tie in either
+// order, even when it grazes the floor; one meeting the wall high above the floor is judged.
+TEST(EmbreeScene, AWallStandingOnAFloorTiesOnlyWhereTheyTouch) {
+  const Polygon a = square(0, 0, 0);
+  const Polygon b{{{{0.5, 0.2, 0}, 0, 0}, {{0.5, 0.8, 0}, 0, 0}, {{0.5, 0.8, 1}, 0, 0}, {{0.5, 0.2, 1}, 0, 0}}, 1};
+  const std::vector<Polygon> polys = {a, b};
+  const EmbreeScene scene(polys);
+  for (double slope : {1.0, 1e-2, 1e-4}) {
+    const Ray at_foot{{0.5 - 1 / slope, 0.5, 1}, {1, 0, -slope}};
+    const auto hits = scene.all_hits(at_foot);
+    ASSERT_EQ(hits.size(), 2u) << slope;
+    EXPECT_EQ(scene.tie_reason(at_foot, hits[0], hits[1]), TieReason::Edge) << slope;
+  }
+  const Ray high{{-1, 0.5, 0.5}, {1, 0, -0.1}};  // meets the wall at z = 0.35, the floor at x = 4: past a
+  const Ray steep{{0.25, 0.5, 0.6}, {1, 0, -1}};  // the wall at z = 0.35, then the floor at x = 0.85
+  const auto hits = scene.all_hits(steep);
+  ASSERT_EQ(hits.size(), 2u);
+  EXPECT_EQ(scene.tie_reason(steep, hits[0], hits[1]), TieReason::None);
+  EXPECT_EQ(scene.all_hits(high).size(), 1u);
+  const std::vector<Ray> rays = {steep};
+  const std::vector<std::uint32_t> wall_first = {1, 0}, floor_first = {0, 1};
+  EXPECT_EQ(check_order(scene, rays, floor_first).violations, 0u);
+  EXPECT_EQ(check_order(scene, rays, wall_first).violations, 1u);
+}
+
+// Two overlapping squares on one plane: every ray through both is a coplanar tie, in either order.
+TEST(EmbreeScene, OverlappingCoplanarFragmentsTie) {
+  const std::vector<Polygon> polys = {square(0, 0, 0), square(0, 0.5, 1)};
+  const EmbreeScene scene(polys);
+  const std::vector<Ray> rays = {{{0.75, 0.5, 1}, {0.1, 0.2, -1}}, {{0.7, 0.3, -1}, {0, 0, 1}}};
+  for (const auto& order : {std::vector<std::uint32_t>{0, 1}, std::vector<std::uint32_t>{1, 0}}) {
+    const OrderCheck c = check_order(scene, rays, order);
+    EXPECT_EQ(c.violations, 0u);
+    EXPECT_EQ(c.ties_coplanar, 2u);
+    EXPECT_EQ(c.pairs_checked, 0u);
+  }
 }
 
 TEST(EmbreeScene, CheckOrderRejectsAnOrderThatIsNotAPermutation) {
@@ -224,7 +269,9 @@ TEST(WrongOrders, CountsAreTheSameOnOneAndTwoThreads) {
   EXPECT_EQ(one.hits, two.hits);
   EXPECT_EQ(one.pairs_checked, two.pairs_checked);
   EXPECT_EQ(one.violations, two.violations);
-  EXPECT_EQ(one.ties, two.ties);
+  EXPECT_EQ(one.hit_pairs, two.hit_pairs);
+  EXPECT_EQ(one.ties_coplanar, two.ties_coplanar);
+  EXPECT_EQ(one.ties_edge, two.ties_edge);
   EXPECT_EQ(one.examples, two.examples);
 }
 

@@ -98,19 +98,19 @@ Run run_once(const CompareSpec& s, const Scene& scene, const std::string& heuris
 
 // The checks summed over the runs; `failures` counts order violations and ray-shooting mismatches.
 nlohmann::json validation_totals(const std::vector<Run>& runs) {
-  std::uint64_t violations = 0, order_rays = 0, mismatches = 0, grazing = 0, shoot_rays = 0;
+  std::uint64_t violations = 0, order_rays = 0, mismatches = 0, shoot_ties = 0, shoot_rays = 0;
   for (const Run& r : runs) {
     violations += r.order.violations;
     order_rays += r.order.rays;
     mismatches += r.ray_shoot.mismatches;
-    grazing += r.ray_shoot.grazing;
+    shoot_ties += r.ray_shoot.ties();
     shoot_rays += r.ray_shoot.rays;
   }
   return {{"failures", violations + mismatches},
           {"order_violations", violations},
           {"order_rays", order_rays},
           {"ray_shoot_mismatches", mismatches},
-          {"ray_shoot_grazing", grazing},
+          {"ray_shoot_ties", shoot_ties},
           {"ray_shoot_rays", shoot_rays}};
 }
 

@@ -9,11 +9,15 @@
 #include <string>
 
 #include "geometry/plane.h"
+#include "geometry/tolerance.h"
 
 namespace bsp {
 
 namespace {
 
+// Relative rounding allowed on the coplanar bound: hit points computed in double carry errors of
+// ~1e-9 plane_eps in the scenes built to stress this (near-degenerate), far below the bound.
+constexpr double kRoundingRelative = 1e-6;
 // A grown vertex moves at most this many times the growth distance (a sharp corner's miter would
 // go arbitrarily far; a shorter one still covers the corner's edges a little less near the tip).
 constexpr double kMiterLimit = 8.0;
@@ -119,8 +123,8 @@ struct EmbreeScene::Impl {
   std::vector<std::uint32_t> first;      // fragment f's vertices: points[first[f], first[f + 1])
   std::vector<Plane> plane;              // per fragment, unit normal; n = 0 for zero area
   std::vector<std::uint32_t> fragment;   // per Embree triangle (primID)
-  double inside_slack = 0.0;
-  double tie = 0.0;
+  double eps = 0.0;                      // plane_eps of the fragments
+  double inside_slack = 0.0;             // kInsideEps * eps
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -132,6 +136,11 @@ struct EmbreeScene::Impl {
   std::vector<unsigned> candidates(const Ray& ray) const;
   std::optional<Hit> exact_hit(const Ray& ray, std::uint32_t f) const;
   std::vector<Hit> hits(const Ray& ray) const;
+
+  std::span<const Vec3> verts(std::uint32_t f) const { return {points.data() + first[f], first[f + 1] - first[f]}; }
+  double inside_distance(std::uint32_t f, const Vec3& x) const;
+  bool coplanar_at(const Ray& ray, const Hit& a, const Hit& b) const;
+  bool touches_at(std::uint32_t f, const Vec3& xf, std::uint32_t g, const Vec3& xg, double radius) const;
 };
 
 void EmbreeScene::Impl::store(std::span<const Polygon> polys) {
@@ -207,6 +216,31 @@ std::vector<unsigned> EmbreeScene::Impl::candidates(const Ray& ray) const {
   return prims;
 }
 
+double distance_to_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
+  const Vec3 e = b - a;
+  const double len2 = dot(e, e);
+  const double s = len2 > 0.0 ? std::clamp(dot(x - a, e) / len2, 0.0, 1.0) : 0.0;
+  return length(x - (a + e * s));
+}
+
+// Signed distance of x (in f's plane) from f's boundary, positive inside: inside, the least
+// distance to an edge's line; outside, the distance to the nearest edge segment (not its line,
+// which beside a sharp corner passes far closer than the polygon does). Zero-length edges do not
+// count.
+double EmbreeScene::Impl::inside_distance(std::uint32_t f, const Vec3& x) const {
+  const std::span<const Vec3> v = verts(f);
+  double least = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec3 e = v[(i + 1) % v.size()] - v[i];
+    const double len = length(e);
+    if (len > 0.0) least = std::min(least, dot(cross(e, x - v[i]), plane[f].n) / len);
+  }
+  if (least >= 0.0) return least;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < v.size(); ++i) nearest = std::min(nearest, distance_to_segment(x, v[i], v[(i + 1) % v.size()]));
+  return -nearest;
+}
+
 // The double-precision decision (header, step 2).
 std::optional<Hit> EmbreeScene::Impl::exact_hit(const Ray& ray, std::uint32_t f) const {
   const Plane& p = plane[f];
@@ -214,16 +248,39 @@ std::optional<Hit> EmbreeScene::Impl::exact_hit(const Ray& ray, std::uint32_t f)
   if (denom == 0.0) return std::nullopt;
   const double t = -p.distance(ray.origin) / denom;
   if (!(t >= 0.0)) return std::nullopt;
-  const Vec3 x = ray.origin + ray.dir * t;
-  const std::uint32_t k = first[f + 1] - first[f];
-  for (std::uint32_t i = 0; i < k; ++i) {
-    const Vec3& a = points[first[f] + i];
-    const Vec3 e = points[first[f] + (i + 1) % k] - a;
-    const double len = length(e);
-    // Signed distance from the edge's line within the plane, positive inside.
-    if (len > 0.0 && dot(cross(e, x - a), p.n) < -inside_slack * len) return std::nullopt;
+  const double inside = inside_distance(f, ray.origin + ray.dir * t);
+  if (inside < -inside_slack) return std::nullopt;
+  const double grazing = std::min(length(ray.dir) / std::abs(denom), kMaxGrazingScale);
+  return Hit{t, f, inside_slack + eps * grazing, inside};
+}
+
+// Whether, where the ray meets them, the two hits lie within 2 eps of each other across one of the
+// fragments' planes (the sine floored by the grazing cap): both within eps of one plane, on which a
+// BSP may file both.
+bool EmbreeScene::Impl::coplanar_at(const Ray& ray, const Hit& a, const Hit& b) const {
+  const double gap = std::abs(b.t - a.t) * length(ray.dir);
+  const auto within = [&](std::uint32_t f) {
+    const double sine = std::abs(dot(plane[f].n, ray.dir)) / length(ray.dir);
+    return gap * std::max(sine, 1.0 / kMaxGrazingScale) <= 2.0 * eps * (1.0 + kRoundingRelative);
+  };
+  return within(a.fragment) || within(b.fragment);
+}
+
+// Whether some edge of f passes within `radius` of xf at a point c that lies within eps of g's
+// plane, inside g up to `radius`, and within `radius` of xg: the ray meets f and g where they touch.
+bool EmbreeScene::Impl::touches_at(std::uint32_t f, const Vec3& xf, std::uint32_t g, const Vec3& xg,
+                                   double radius) const {
+  const std::span<const Vec3> v = verts(f);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const Vec3& a = v[i];
+    const Vec3 e = v[(i + 1) % v.size()] - a;
+    const double len2 = dot(e, e);
+    const Vec3 c = a + e * (len2 > 0.0 ? std::clamp(dot(xf - a, e) / len2, 0.0, 1.0) : 0.0);
+    if (length(xf - c) <= radius && length(xg - c) <= radius && std::abs(plane[g].distance(c)) <= eps &&
+        inside_distance(g, c) >= -radius)
+      return true;
   }
-  return Hit{t, f, inside_slack / std::abs(denom)};
+  return false;
 }
 
 std::vector<Hit> EmbreeScene::Impl::hits(const Ray& ray) const {
@@ -240,13 +297,14 @@ std::vector<Hit> EmbreeScene::Impl::hits(const Ray& ray) const {
   return out;
 }
 
-EmbreeScene::EmbreeScene(std::span<const Polygon> fragments, double tie_relative) : impl_(std::make_unique<Impl>()) {
+EmbreeScene::EmbreeScene(std::span<const Polygon> fragments, std::optional<double> plane_eps)
+    : impl_(std::make_unique<Impl>()) {
   impl_->device = new_checked_device();
   impl_->store(fragments);
   const double diagonal = impl_->box.diagonal();
   const double grow = kGrowRelative * diagonal;
-  impl_->inside_slack = kInsideRelative * diagonal;
-  impl_->tie = tie_relative * diagonal;
+  impl_->eps = plane_eps.value_or(Tolerance::for_extent(diagonal).plane_eps);
+  impl_->inside_slack = kInsideEps * impl_->eps;
   if (!impl_->box.empty()) impl_->box = {impl_->box.lo - Vec3{grow, grow, grow}, impl_->box.hi + Vec3{grow, grow, grow}};
   impl_->build(grow);
 }
@@ -263,7 +321,26 @@ std::optional<Hit> EmbreeScene::first_hit(const Ray& ray) const {
   return hits.front();
 }
 
-double EmbreeScene::tie_tolerance() const { return impl_->tie; }
+std::optional<Hit> EmbreeScene::hit(const Ray& ray, std::uint32_t fragment) const {
+  if (impl_->plane[fragment].n == Vec3{}) return std::nullopt;
+  return impl_->exact_hit(ray, fragment);
+}
+
+// The edge reason needs one hit within the pair's radius of its fragment's boundary, so most pairs
+// skip its edge walk.
+TieReason EmbreeScene::tie_reason(const Ray& ray, const Hit& a, const Hit& b) const {
+  const double radius = a.radius + b.radius;
+  const Vec3 xa = ray.origin + ray.dir * a.t, xb = ray.origin + ray.dir * b.t;
+  if (length(xa - xb) <= 2.0 * radius && (a.inside <= radius || b.inside <= radius) &&
+      (impl_->touches_at(a.fragment, xa, b.fragment, xb, radius) ||
+       impl_->touches_at(b.fragment, xb, a.fragment, xa, radius)))
+    return TieReason::Edge;
+  if (impl_->coplanar_at(ray, a, b)) return TieReason::Coplanar;
+  if (a.inside < 0.0 || b.inside < 0.0) return TieReason::Boundary;
+  return TieReason::None;
+}
+
+double EmbreeScene::plane_eps() const { return impl_->eps; }
 std::size_t EmbreeScene::fragment_count() const { return impl_->first.size() - 1; }
 
 }  // namespace bsp

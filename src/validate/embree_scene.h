@@ -18,10 +18,27 @@
 //     shifted to the scene box's centre and rays start where they enter the box, so float rounding
 //     is relative to the scene's size, not to its position or the eye's distance.
 //  2. A candidate is a hit when the ray meets the fragment's supporting plane (Newell normal) at
-//     t >= 0 at a point inside the fragment or within kInsideRelative × diagonal of its boundary;
+//     t >= 0 at a point inside the fragment or within kInsideEps × plane_eps of its boundary;
 //     t is that meeting point's ray parameter. Rays lying in a fragment's plane do not hit it.
-// Two hits whose distances differ by at most tie_tolerance() are ties: a ray through a shared
-// edge, or coplanar overlapping fragments, or fragments that touch within the BSP's plane_eps.
+// Ties (Hit, tie_reason): two hits on a ray are a tie only when geometry leaves their order open.
+// A BSP decides sides with plane_eps, so within plane_eps of each other two fragments may lie either
+// way; elsewhere their order along a ray is a fact. The reasons, in the order they are tested:
+//  - edge: the ray meets both within the hit radius of a point c where they touch: c lies on an
+//    edge of one fragment, within plane_eps of the other's plane and inside it (a shared edge, or an
+//    edge resting on the other's face, as a wall stands on a floor);
+//  - coplanar: where the ray meets them, the planes coincide within plane_eps: one hit lies within
+//    plane_eps of the other fragment's plane (the distance along the ray times the sine of the
+//    ray's angle to that plane, the sine floored at 1 / kMaxGrazingScale). A BSP files a fragment
+//    whose vertices lie within plane_eps of a plane on either side of it, so there the order is
+//    open: overlapping coplanar polygons, two parts of one split polygon, near-coplanar layers
+//    (two fragments within plane_eps of one node's plane, so up to 2 plane_eps apart);
+//  - boundary: otherwise, when one hit lies outside its fragment by less than the boundary slack
+//    (kInsideEps × plane_eps): whether the ray meets that fragment at all is below what the
+//    fragments' own planarity lets the double-precision test decide.
+// The hit radius of a hit is how far its computed point can be from where the ray truly meets the
+// fragment: the boundary slack of the double-precision test plus plane_eps (the fragment's own
+// planarity) divided by the sine of the angle between the ray and the fragment's plane, that
+// division capped at kMaxGrazingScale. Any other pair is judged, however close its hits.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -33,18 +50,13 @@
 
 namespace bsp {
 
-// Ties: hits closer along a ray than kTieRelative × (diagonal of the fragments' bounding box) plus
-// both hits' own depth uncertainty (Hit::slack). A hit's depth is exact up to the boundary slack
-// kInsideRelative and the fragments' planarity tolerance (plane_eps = 1e-9 diagonals), divided by
-// the sine of the angle between the ray and the fragment's plane: negligible for most rays, but a
-// ray grazing a plane at a sine of 6e-4 has a depth uncertain by ~2e-5 diagonals, which the fixed
-// kTieRelative alone would take for a real separation. 1e-5 stays far below any depth separation a
-// scene means to have.
-inline constexpr double kTieRelative = 1e-5;
-// Boundary slack of the double-precision hit test: ten times plane_eps, so that a ray through an
-// edge shared by two fragments (whose planes fit their vertices to within plane_eps) hits at least
-// one of them.
-inline constexpr double kInsideRelative = 1e-8;
+// Boundary slack of the double-precision hit test, in plane_eps: a ray through an edge shared by two
+// fragments (whose planes fit their vertices to within plane_eps) hits at least one of them.
+inline constexpr double kInsideEps = 1.0;
+// Cap on 1 / sin(angle between a ray and a fragment's plane) in the hit radius: a ray grazing a
+// plane at a sine below 1e-3 (0.06 degrees) gets the radius of one at 1e-3, so the radius stays
+// below ~1e-6 scene diagonals instead of growing without bound.
+inline constexpr double kMaxGrazingScale = 1e3;
 // How far Embree's copy of each fragment is grown: ~30 float ulps of a coordinate in the centred
 // box, so Embree's float rounding cannot lose a candidate the double test would accept.
 inline constexpr double kGrowRelative = 1e-6;
@@ -55,17 +67,21 @@ struct Ray {
 };
 
 struct Hit {
-  double t;                // ray parameter of the hit, t >= 0
-  std::uint32_t fragment;  // index into the fragments the scene was built from
-  double slack = 0.0;      // uncertainty of t: boundary slack / |plane normal · dir| (see kTieRelative)
+  double t;                 // ray parameter of the hit, t >= 0
+  std::uint32_t fragment;   // index into the fragments the scene was built from
+  double radius = 0.0;      // the hit radius (header), world units
+  double inside = 0.0;      // distance of the hit point from the fragment's boundary, < 0 outside
 };
+
+enum class TieReason : std::uint8_t { None, Coplanar, Edge, Boundary };
 
 class EmbreeScene {
  public:
-  // Fragments must be convex planar polygons (zero-area ones are never hit). Throws
-  // std::runtime_error when Embree fails or lacks what the technique needs (filter functions
-  // supported, backface culling off).
-  explicit EmbreeScene(std::span<const Polygon> fragments, double tie_relative = kTieRelative);
+  // Fragments must be convex planar polygons (zero-area ones are never hit). plane_eps is the
+  // tolerance the fragments were made with (Tree::tol); by default that of their bounding box
+  // (Tolerance::for_extent). Throws std::runtime_error when Embree fails or lacks what the
+  // technique needs (filter functions supported, backface culling off).
+  explicit EmbreeScene(std::span<const Polygon> fragments, std::optional<double> plane_eps = std::nullopt);
   ~EmbreeScene();
   EmbreeScene(EmbreeScene&&) noexcept;
   EmbreeScene& operator=(EmbreeScene&&) noexcept;
@@ -73,12 +89,15 @@ class EmbreeScene {
   // Every fragment the ray meets at t >= 0, once each, sorted by (t, fragment). Thread-safe.
   std::vector<Hit> all_hits(const Ray& ray) const;
   // Exactly all_hits(ray).front(): the nearest hit (smallest fragment id on an exact tie). A
-  // fragment within tie_tolerance() of it is equally entitled to be first; all_hits tells which.
-  // Thread-safe.
+  // fragment tied with it (tie_reason) is equally entitled to be first. Thread-safe.
   std::optional<Hit> first_hit(const Ray& ray) const;
+  // The double-precision decision for one fragment, without Embree: where the ray meets it, if it
+  // does. all_hits returns exactly these hits for the fragments Embree proposes.
+  std::optional<Hit> hit(const Ray& ray, std::uint32_t fragment) const;
+  // Why two hits of one ray cannot be ordered (header), or None when they can.
+  TieReason tie_reason(const Ray& ray, const Hit& a, const Hit& b) const;
 
-  // Distance (world units, i.e. |Δt| × |dir|) at or below which two hits are a tie.
-  double tie_tolerance() const;
+  double plane_eps() const;
   std::size_t fragment_count() const;
 
  private:

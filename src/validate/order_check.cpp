@@ -57,14 +57,17 @@ std::vector<std::uint32_t> positions(std::span<const std::uint32_t> order, std::
 struct Tally {
   std::vector<std::uint64_t> checked;    // unordered keys
   std::vector<std::uint64_t> violating;  // ordered keys (nearer, farther)
-  std::uint64_t hits = 0, ties = 0;
+  std::uint64_t hits = 0, hit_pairs = 0, ties_coplanar = 0, ties_edge = 0, ties_boundary = 0;
 
   // Merges another thread's tally; both key lists must be sorted and free of repeats.
   void add(const Tally& o) {
     merge_unique(checked, o.checked);
     merge_unique(violating, o.violating);
     hits += o.hits;
-    ties += o.ties;
+    hit_pairs += o.hit_pairs;
+    ties_coplanar += o.ties_coplanar;
+    ties_edge += o.ties_edge;
+    ties_boundary += o.ties_boundary;
   }
 
   static void merge_unique(std::vector<std::uint64_t>& into, const std::vector<std::uint64_t>& from) {
@@ -75,16 +78,26 @@ struct Tally {
   }
 };
 
-// Every pair of hits on one ray that is not a tie (closer than the tie tolerance plus both hits'
-// depth uncertainties): the nearer fragment must come later in the order.
-void check_ray(const std::vector<Hit>& hits, double tie_t, const std::vector<std::uint32_t>& pos, Tally& tally) {
+// Counts a tie by its reason; false when the pair is to be judged.
+bool count_tie(TieReason reason, Tally& tally) {
+  switch (reason) {
+    case TieReason::None: return false;
+    case TieReason::Coplanar: ++tally.ties_coplanar; break;
+    case TieReason::Edge: ++tally.ties_edge; break;
+    case TieReason::Boundary: ++tally.ties_boundary; break;
+  }
+  return true;
+}
+
+// Every pair of hits on one ray that is not a tie (embree_scene.h): the nearer fragment must come
+// later in the order.
+void check_ray(const EmbreeScene& scene, const Ray& ray, const std::vector<std::uint32_t>& pos, Tally& tally) {
+  const std::vector<Hit> hits = scene.all_hits(ray);
   tally.hits += hits.size();
+  tally.hit_pairs += hits.size() * (hits.size() - (hits.empty() ? 0 : 1)) / 2;
   for (std::size_t i = 0; i < hits.size(); ++i)
     for (std::size_t j = i + 1; j < hits.size(); ++j) {
-      if (hits[j].t - hits[i].t <= tie_t + hits[i].slack + hits[j].slack) {
-        ++tally.ties;
-        continue;
-      }
+      if (count_tie(scene.tie_reason(ray, hits[i], hits[j]), tally)) continue;
       const std::uint32_t nearer = hits[i].fragment, farther = hits[j].fragment;
       tally.checked.push_back(unordered_key(nearer, farther));
       if (pos[nearer] < pos[farther]) tally.violating.push_back(ordered_key(nearer, farther));
@@ -97,7 +110,10 @@ OrderCheck summarise(const Tally& all, std::uint64_t rays) {
   OrderCheck out;
   out.rays = rays;
   out.hits = all.hits;
-  out.ties = all.ties;
+  out.hit_pairs = all.hit_pairs;
+  out.ties_coplanar = all.ties_coplanar;
+  out.ties_edge = all.ties_edge;
+  out.ties_boundary = all.ties_boundary;
   out.pairs_checked = all.checked.size();
   for (std::size_t i = 0; i < all.violating.size() && i < OrderCheck::kMaxReported; ++i)
     out.examples.emplace_back(static_cast<std::uint32_t>(all.violating[i] >> 32),
@@ -127,7 +143,10 @@ void accumulate(ValidationReport& r, const OrderCheck& c, int view) {
   r.hits += c.hits;
   r.pairs_checked += c.pairs_checked;
   r.violations += c.violations;
-  r.ties += c.ties;
+  r.hit_pairs += c.hit_pairs;
+  r.ties_coplanar += c.ties_coplanar;
+  r.ties_edge += c.ties_edge;
+  r.ties_boundary += c.ties_boundary;
   for (const auto& [nearer, farther] : c.examples) {
     if (r.first_problems.size() >= OrderCheck::kMaxReported) break;
     r.first_problems.push_back("view " + std::to_string(view) + ": fragment " + std::to_string(nearer) +
@@ -147,8 +166,7 @@ OrderCheck check_order(const EmbreeScene& scene, std::span<const Ray> rays,
     Tally mine;
 #pragma omp for schedule(dynamic, 64) nowait
     for (std::int64_t i = 0; i < n; ++i) {
-      const Ray& ray = rays[static_cast<std::size_t>(i)];
-      check_ray(scene.all_hits(ray), scene.tie_tolerance() / length(ray.dir), pos, mine);
+      check_ray(scene, rays[static_cast<std::size_t>(i)], pos, mine);
     }
     // Sorting here runs on every thread; the merge below is linear.
     sort_unique(mine.checked);
@@ -162,9 +180,9 @@ OrderCheck check_order(const EmbreeScene& scene, std::span<const Ray> rays,
 ValidationReport validate_tree(const Tree& tree, const ValidationSettings& settings) {
   const auto start = Clock::now();
   ValidationReport r;
-  const EmbreeScene scene(tree.fragments, settings.tie_relative);
+  const EmbreeScene scene(tree.fragments, tree.tol.plane_eps);
   r.fragments = tree.fragments.size();
-  r.tie_tolerance = scene.tie_tolerance();
+  r.plane_eps = scene.plane_eps();
   const auto cast_start = Clock::now();
   const std::vector<Vec3> eyes = validation_eyes(tree.bounds, settings.views);
   for (std::size_t v = 0; v < eyes.size(); ++v) {
@@ -180,9 +198,9 @@ ValidationReport validate_order(std::span<const Polygon> polys, const Vec3& eye,
                                 std::span<const std::uint32_t> order, const ValidationSettings& settings) {
   const auto start = Clock::now();
   ValidationReport r;
-  const EmbreeScene scene(polys, settings.tie_relative);
+  const EmbreeScene scene(polys);
   r.fragments = polys.size();
-  r.tie_tolerance = scene.tie_tolerance();
+  r.plane_eps = scene.plane_eps();
   Box box;
   for (const auto& p : polys)
     for (const auto& v : p.verts) box.add(v.p);
@@ -198,10 +216,14 @@ nlohmann::json to_json(const ValidationReport& r) {
           {"fragments", r.fragments},
           {"rays", r.rays},
           {"hits", r.hits},
+          {"hit_pairs", r.hit_pairs},
           {"pairs_checked", r.pairs_checked},
           {"violations", r.violations},
-          {"ties", r.ties},
-          {"tie_tolerance", r.tie_tolerance},
+          {"ties", r.ties()},
+          {"ties_coplanar", r.ties_coplanar},
+          {"ties_edge", r.ties_edge},
+          {"ties_boundary", r.ties_boundary},
+          {"plane_eps", r.plane_eps},
           {"seconds", r.seconds},
           {"rays_per_second", r.rays_per_second},
           {"first_problems", r.first_problems}};

@@ -2,9 +2,10 @@
 // Checking back-to-front visibility orders against Embree (issue 2, items 7 and 8).
 //
 // The rule: along any ray from the eye, a fragment hit nearer must be drawn after every fragment
-// hit farther away. For each ray, every pair of hits that is not a tie (embree_scene.h) is checked;
-// a pair drawn in the wrong order is a violation. Pairs are counted as distinct unordered fragment
-// pairs, so one wrongly ordered pair seen by many rays counts once per view.
+// hit farther away. For each ray, every pair of hits that is not a tie (embree_scene.h: coplanar,
+// or meeting where the two fragments touch) is checked; a pair drawn in the wrong order is a
+// violation. Pairs are counted as distinct unordered fragment pairs, so one wrongly ordered pair
+// seen by many rays counts once per view; hit pairs and ties are counted per ray.
 //
 // Deterministic: rays are cast in parallel (rtcIntersect1 on a committed scene is thread-safe),
 // but every count is a sum or a set size, the same on any thread count.
@@ -25,9 +26,12 @@ namespace bsp {
 struct OrderCheck {
   std::uint64_t rays = 0;
   std::uint64_t hits = 0;           // fragment hits over all rays
+  std::uint64_t hit_pairs = 0;      // pairs of hits on one ray, summed over rays
   std::uint64_t pairs_checked = 0;  // distinct unordered fragment pairs compared on some ray
   std::uint64_t violations = 0;     // distinct unordered fragment pairs drawn in the wrong order
-  std::uint64_t ties = 0;           // hit pairs within the tie tolerance, not judged (counted per ray)
+  std::uint64_t ties_coplanar = 0;  // hit pairs not judged because their planes coincide
+  std::uint64_t ties_edge = 0;      // hit pairs not judged because the ray meets them where they touch
+  std::uint64_t ties_boundary = 0;  // hit pairs not judged because the ray passes one within the boundary slack
   // Up to kMaxReported violating pairs as (nearer, farther) fragment ids, smallest first.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> examples;
 
@@ -43,14 +47,18 @@ struct ValidationReport {
   std::uint64_t fragments = 0;
   std::uint64_t rays = 0;
   std::uint64_t hits = 0;
+  std::uint64_t hit_pairs = 0;      // as OrderCheck's, summed over views
   std::uint64_t pairs_checked = 0;  // summed over views
   std::uint64_t violations = 0;     // summed over views
-  std::uint64_t ties = 0;
-  double tie_tolerance = 0.0;    // world units
+  std::uint64_t ties_coplanar = 0;
+  std::uint64_t ties_edge = 0;
+  std::uint64_t ties_boundary = 0;
+  double plane_eps = 0.0;        // the tolerance the ties were judged with, world units
   double seconds = 0.0;          // wall time, Embree scene build included
   double rays_per_second = 0.0;  // rays / time spent making, casting and checking them
   std::vector<std::string> first_problems;  // up to OrderCheck::kMaxReported, for messages
 
+  std::uint64_t ties() const { return ties_coplanar + ties_edge + ties_boundary; }
   bool ok() const { return violations == 0; }
 };
 

@@ -2,15 +2,11 @@
 // Checking the tree's ray shooting (metrics/ray_shoot.h) against Embree's first hit, ray by ray:
 // a second correctness check of a tree, independent of the visibility-order check.
 //
-// Verdict per ray, first that applies:
-//  - agree: both miss, or both name the same fragment;
-//  - tie: the two hits lie within tie_tolerance() of each other along the ray (embree_scene.h);
-//  - grazing: the ray passes within tie_tolerance() of the boundary of the fragment of the nearer
-//    of the two claimed hits (distance between the ray's line and the fragment's edges), so a
-//    float rounding of the ray or the vertices can decide whether it meets that fragment: rays
-//    past an edge, or nearly parallel to a small fragment's plane, where Embree's float test
-//    shifts the hit point by its error divided by the sine of the incidence angle;
-//  - mismatch: anything else, e.g. the walk skipped the subtree holding the nearest fragment.
+// Verdict per ray: agree when both miss or both name the same fragment; otherwise a tie when the
+// two fragments' hits are tied by the order check's rule (EmbreeScene::tie_reason), counted by
+// reason; anything else is a mismatch, e.g. the walk
+// skipped the subtree holding the nearest fragment, or it claims a fragment the ray does not meet.
+// Nothing is excused: a disagreement is a tie by that rule or a failure.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -25,21 +21,23 @@
 
 namespace bsp {
 
-enum class HitVerdict : std::uint8_t { Agree, Tie, Grazing, Mismatch };
+enum class HitVerdict : std::uint8_t { Agree, TieCoplanar, TieEdge, TieBoundary, Mismatch };
 
-// `fragments` are those both hits index.
+// `scene` holds the fragments both hits index; `embree` is its first hit on the ray.
 HitVerdict judge_first_hits(const std::optional<Hit>& bsp, const std::optional<Hit>& embree, const Ray& ray,
-                            std::span<const Polygon> fragments, double tie);
+                            const EmbreeScene& scene);
 
 struct RayShootCheck {
   std::uint64_t rays = 0;
   std::uint64_t hits = 0;        // rays on which Embree reports a hit
-  std::uint64_t ties = 0;
-  std::uint64_t grazing = 0;
+  std::uint64_t ties_coplanar = 0;
+  std::uint64_t ties_edge = 0;
+  std::uint64_t ties_boundary = 0;
   std::uint64_t mismatches = 0;
   std::vector<std::string> first_problems;  // up to kMaxReported, for messages
 
   static constexpr std::size_t kMaxReported = 10;
+  std::uint64_t ties() const { return ties_coplanar + ties_edge + ties_boundary; }
   bool ok() const { return mismatches == 0; }
 };
 

@@ -24,7 +24,6 @@ struct ValidationSettings {
   int grid = 48;              // pixels per side of an outside eye's grid over the box's projection
   int cube_grid = 24;         // pixels per side of each of the six cube-map faces of an inside eye
   double vertex_pull = 0.1;   // vertex sample = vertex + vertex_pull * (centroid - vertex), in (0, 1]
-  double tie_relative = kTieRelative;  // see embree_scene.h
 };
 
 std::vector<Vec3> validation_eyes(const Box& box, int views);
