@@ -6,6 +6,7 @@
 #include "geometry/polytope.h"
 
 #include <cmath>
+#include "common/rng.h"
 #include "geometry/tolerance.h"
 
 using namespace bsp;
@@ -121,4 +122,31 @@ TEST(Split, AdjacentVerticesWithinToleranceDoNotMakeThePartsOverlap) {
   const auto r = split(tilted, Plane::through({0, 0, 1}, {0, 0, 0}), e);
   const double parts = (r.front ? area(*r.front) : 0.0) + (r.back ? area(*r.back) : 0.0) + r.dropped_area;
   EXPECT_NEAR(parts, area(tilted), 1e-12);
+}
+
+// Mesh faces share vertices: a plane made from one face passes through a vertex of its neighbour
+// up to rounding, so the neighbour's cut point next to that vertex can round onto it exactly.
+TEST(Split, ACutPointRoundingOntoASharedVertexIsNotRepeated) {
+  Rng rng(11);
+  const auto point = [&] { return Vec3{rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-4, 4)}; };
+  int collapsing = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Vec3 p0 = point(), p1 = point(), p2 = point();
+    const Polygon face{{{p0, 0, 0}, {p1, 0, 0}, {p2, 0, 0}}, 0};
+    const auto plane = supporting_plane(face);
+    const double d0 = plane ? plane->distance(p0) : 0.0;
+    if (d0 == 0.0) continue;
+    const Vec3 across = p0 - plane->n * std::copysign(1.0, d0), beside = point();
+    const Polygon neighbour{{{p0, 0, 0}, {across, 0, 0}, {beside, 0, 0}}, 1};
+    if (classify(neighbour, *plane, kEps) != Side::Spanning) continue;
+    const double d1 = plane->distance(across);
+    collapsing += lerp(p0, across, d0 / (d0 - d1)) == p0;
+    const auto r = split(neighbour, *plane, kEps);
+    for (const auto& part : {r.front, r.back}) {
+      if (!part) continue;
+      for (std::size_t i = 0; i < part->verts.size(); ++i)
+        ASSERT_FALSE(part->verts[i].p == part->verts[(i + 1) % part->verts.size()].p) << trial;
+    }
+  }
+  EXPECT_GT(collapsing, 0);
 }

@@ -75,6 +75,27 @@ TEST(TreeInvariants, CatchACorruptedTree) {
   EXPECT_FALSE(check_tree_invariants(tree, scene.polygons).ok());
 }
 
+TEST(TreeInvariants, CatchADegenerateFragment) {
+  const Scene scene = make_scene("random-triangles", {{"n", "200"}});
+  Tree tree = build(scene.polygons, "random");
+  ASSERT_TRUE(check_tree_invariants(tree, scene.polygons).ok());
+  // A repeated vertex: same area, same sides, only the shape check can see it.
+  Tree repeated = tree;
+  auto& verts = repeated.fragments.front().verts;
+  verts.insert(verts.begin() + 1, verts.front());
+  const InvariantReport r = check_tree_invariants(repeated, scene.polygons);
+  ASSERT_EQ(r.violations, 1u);
+  EXPECT_NE(r.first_problems.front().find("repeats vertex"), std::string::npos);
+  // A sliver: one vertex moved onto the opposite edge's midpoint leaves zero width.
+  Tree sliver = tree;
+  auto& v = sliver.fragments.front().verts;
+  v[2].p = (v[0].p + v[1].p) * 0.5;
+  const InvariantReport s = check_tree_invariants(sliver, scene.polygons);
+  bool named = false;
+  for (const auto& p : s.first_problems) named |= p.find("sliver") != std::string::npos;
+  EXPECT_TRUE(named);
+}
+
 TEST(Traversal, FrontToBackIsTheReverseOfBackToFront) {
   const Scene scene = make_scene("random-triangles", {{"n", "300"}});
   const Tree tree = build(scene.polygons, "first");

@@ -1,5 +1,6 @@
 #include "geometry/polygon.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace bsp {
@@ -70,8 +71,17 @@ Vertex interpolate(const Vertex& a, const Vertex& b, double t) {
   return {lerp(a.p, b.p, t), a.u + (b.u - a.u) * t, a.v + (b.v - a.v) * t};
 }
 
+// Removes a vertex at the same point as its predecessor: a cut point interpolated within rounding
+// of an end of its edge lands exactly on it. The area is unchanged.
+void drop_repeated_vertices(Polygon& part) {
+  auto& v = part.verts;
+  v.erase(std::unique(v.begin(), v.end(), [](const Vertex& a, const Vertex& b) { return a.p == b.p; }), v.end());
+  while (v.size() > 1 && v.front().p == v.back().p) v.pop_back();
+}
+
 // Keeps a part, or drops it as a sliver and records that.
 void keep_or_drop(Polygon&& part, double eps, std::optional<Polygon>& slot, SplitResult& out) {
+  drop_repeated_vertices(part);
   if (is_sliver(part, eps)) {
     ++out.dropped;
     out.dropped_area += part.verts.size() >= 3 ? area(part) : 0.0;

@@ -86,6 +86,7 @@ class Checker {
     for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
       ++covered[i];
       const Polygon& frag = tree_.fragments[i];
+      check_shape(i, frag);
       for (auto p : path)
         if (!in_front_or_on(frag, tree_.planes[p], eps))
           fail("fragment " + std::to_string(i) + " at node " + std::to_string(index) + " on the wrong side of an ancestor plane");
@@ -93,6 +94,17 @@ class Checker {
         fail("fragment " + std::to_string(i) + " stored at node " + std::to_string(index) + " is not coplanar with it");
     }
     if (node.is_cell_leaf()) check_convex_leaf(index, node);
+  }
+
+  // 5: no degenerate fragment: no two consecutive vertices at one point, not a sliver.
+  void check_shape(std::uint32_t i, const Polygon& frag) {
+    for (std::size_t k = 0; k < frag.verts.size(); ++k)
+      if (frag.verts[k].p == frag.verts[(k + 1) % frag.verts.size()].p) {
+        fail("fragment " + std::to_string(i) + " repeats vertex " + std::to_string(k));
+        break;
+      }
+    if (is_sliver(frag, tree_.tol.plane_eps))
+      fail("fragment " + std::to_string(i) + " is a sliver (narrower than plane_eps)");
   }
 
   void check_convex_leaf(std::uint32_t index, const Node& node) {
