@@ -59,6 +59,18 @@ bool in_front_or_on(const Polygon& poly, const Plane& plane, double eps) {
   return true;
 }
 
+double merge_close_vertices(Polygon& poly, double eps) {
+  if (poly.verts.size() < 2) return 0.0;
+  const double before = poly.verts.size() >= 3 ? area(poly) : 0.0;
+  std::vector<Vertex> kept{poly.verts.front()};
+  for (std::size_t i = 1; i < poly.verts.size(); ++i)
+    if (length(poly.verts[i].p - kept.back().p) > eps) kept.push_back(poly.verts[i]);
+  while (kept.size() > 1 && length(kept.back().p - kept.front().p) <= eps) kept.pop_back();
+  if (kept.size() == poly.verts.size()) return 0.0;
+  poly.verts = std::move(kept);
+  return before - (poly.verts.size() >= 3 ? area(poly) : 0.0);
+}
+
 bool is_sliver(const Polygon& poly, double eps) {
   if (poly.verts.size() < 3) return true;
   const double edge = longest_edge(poly);
@@ -71,17 +83,9 @@ Vertex interpolate(const Vertex& a, const Vertex& b, double t) {
   return {lerp(a.p, b.p, t), a.u + (b.u - a.u) * t, a.v + (b.v - a.v) * t};
 }
 
-// Removes a vertex at the same point as its predecessor: a cut point interpolated within rounding
-// of an end of its edge lands exactly on it. The area is unchanged.
-void drop_repeated_vertices(Polygon& part) {
-  auto& v = part.verts;
-  v.erase(std::unique(v.begin(), v.end(), [](const Vertex& a, const Vertex& b) { return a.p == b.p; }), v.end());
-  while (v.size() > 1 && v.front().p == v.back().p) v.pop_back();
-}
-
 // Keeps a part, or drops it as a sliver and records that.
 void keep_or_drop(Polygon&& part, double eps, std::optional<Polygon>& slot, SplitResult& out) {
-  drop_repeated_vertices(part);
+  out.dropped_area += merge_close_vertices(part, eps);
   if (is_sliver(part, eps)) {
     ++out.dropped;
     out.dropped_area += part.verts.size() >= 3 ? area(part) : 0.0;

@@ -37,12 +37,18 @@ Side classify(const Polygon& poly, const Plane& plane, double eps);
 // True when no vertex is behind the plane by more than eps (front or on it).
 bool in_front_or_on(const Polygon& poly, const Plane& plane, double eps);
 
+// Removes every vertex within eps of the vertex kept before it (and trailing ones within eps of the
+// first): two vertices closer than the tolerance are one point, and an edge that short has no
+// reliable direction (a cut point interpolated within rounding of its edge's end lands there).
+// A convex polygon stays convex and inside the original. Returns the area removed.
+double merge_close_vertices(Polygon& poly, double eps);
+
 // A fragment narrower than eps (area / longest edge < eps) or with fewer than 3 vertices is a
 // sliver; splitting drops it and reports it here.
 struct SplitResult {
   std::optional<Polygon> front, back;
   int dropped = 0;            // slivers dropped by this split (0, 1 or 2)
-  double dropped_area = 0.0;  // their total area
+  double dropped_area = 0.0;  // their total area, plus the area merge_close_vertices shaved off the parts
 };
 
 // Splits a polygon classified Spanning; both parts keep `source`. Each part is convex, and the

@@ -10,9 +10,11 @@ bool is_planar(const Polygon& poly, const Plane& plane, double eps) {
   return true;
 }
 
-// Adds one convex planar polygon, or drops it as a sliver.
+// Adds one convex planar polygon, or drops it as a sliver; vertices within eps of each other merge
+// first, and the area that shaves off counts as dropped.
 void add_one(Polygon&& poly, Tree& tree, FragmentStore& store, std::vector<std::uint32_t>& ids) {
   const double eps = tree.tol.plane_eps;
+  tree.stats.dropped_area += merge_close_vertices(poly, eps);
   const auto plane = supporting_plane(poly);
   if (!plane || is_sliver(poly, eps)) {
     ++tree.stats.dropped_input;

@@ -96,10 +96,10 @@ class Checker {
     if (node.is_cell_leaf()) check_convex_leaf(index, node);
   }
 
-  // 5: no degenerate fragment: no two consecutive vertices at one point, not a sliver.
+  // 5: no degenerate fragment: no two consecutive vertices within plane_eps, not a sliver.
   void check_shape(std::uint32_t i, const Polygon& frag) {
     for (std::size_t k = 0; k < frag.verts.size(); ++k)
-      if (frag.verts[k].p == frag.verts[(k + 1) % frag.verts.size()].p) {
+      if (length(frag.verts[k].p - frag.verts[(k + 1) % frag.verts.size()].p) <= tree_.tol.plane_eps) {
         fail("fragment " + std::to_string(i) + " repeats vertex " + std::to_string(k));
         break;
       }

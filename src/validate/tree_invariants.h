@@ -8,8 +8,8 @@
 //     convex set;
 //  4. conservation: total fragment area + dropped area = input area (relative 1e-9), no source's
 //     fragments exceed its input area, and the split-count identity of BuildStats holds;
-//  5. shape: no fragment repeats a vertex (two consecutive vertices at one point) or is a sliver
-//     (narrower than plane_eps, is_sliver), the shapes the build drops and counts instead.
+//  5. shape: no fragment repeats a vertex (two consecutive vertices within plane_eps) or is a
+//     sliver (narrower than plane_eps, is_sliver): shapes the build merges or drops and counts.
 // Cost O(sum over fragments of their depth).
 #include <cstdint>
 #include <span>
