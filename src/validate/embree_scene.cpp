@@ -74,22 +74,25 @@ std::vector<Vec3> edge_normals(std::span<const Vec3> v, const Vec3& n) {
   return m;
 }
 
-// The polygon with every edge moved outward by `grow` in its plane: each vertex goes to where its
-// two moved edges meet (w·a = w·b = grow), capped at kMiterLimit * grow.
+// The polygon with every edge moved outward by `grow` in its plane. A vertex goes to where its two
+// moved edges meet (w·a = w·b = grow) unless that miter point lies more than kMiterLimit * grow
+// away (a sharp corner); then the corner is bevelled: two points, each on one moved edge `grow`
+// past the vertex, so the edge between two sharp corners of a sliver moves outward too.
 std::vector<Vec3> grown(std::span<const Vec3> v, const Vec3& n, double grow) {
   const std::vector<Vec3> m = edge_normals(v, n);
-  std::vector<Vec3> out(v.size());
+  std::vector<Vec3> out;
   for (std::size_t i = 0; i < v.size(); ++i) {
     Vec3 a = m[(i + v.size() - 1) % v.size()], b = m[i];
     if (a == Vec3{}) a = b;
     if (b == Vec3{}) b = a;
     const double cos_ab = dot(a, b);
-    Vec3 w;
-    if (cos_ab > -1.0 + 2.0 / (kMiterLimit * kMiterLimit))
-      w = (a + b) * (grow / (1.0 + cos_ab));
-    else if (length(a + b) > 0.0)
-      w = normalize(a + b) * (kMiterLimit * grow);
-    out[i] = v[i] + w;
+    if (cos_ab > -1.0 + 2.0 / (kMiterLimit * kMiterLimit)) {
+      out.push_back(v[i] + (a + b) * (grow / (1.0 + cos_ab)));
+      continue;
+    }
+    // The incoming edge runs along cross(n, a), the outgoing one along cross(n, b).
+    out.push_back(v[i] + (a + cross(n, a)) * grow);
+    out.push_back(v[i] + (b - cross(n, b)) * grow);
   }
   return out;
 }
@@ -319,6 +322,15 @@ std::optional<Hit> EmbreeScene::first_hit(const Ray& ray) const {
   const std::vector<Hit> hits = impl_->hits(ray);
   if (hits.empty()) return std::nullopt;
   return hits.front();
+}
+
+std::optional<Hit> EmbreeScene::first_hit_exhaustive(const Ray& ray) const {
+  std::optional<Hit> best;
+  for (std::uint32_t f = 0; f < fragment_count(); ++f) {
+    const auto h = hit(ray, f);
+    if (h && (!best || h->t < best->t)) best = h;
+  }
+  return best;
 }
 
 std::optional<Hit> EmbreeScene::hit(const Ray& ray, std::uint32_t fragment) const {

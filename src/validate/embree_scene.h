@@ -57,9 +57,11 @@ inline constexpr double kInsideEps = 1.0;
 // plane at a sine below 1e-3 (0.06 degrees) gets the radius of one at 1e-3, so the radius stays
 // below ~1e-6 scene diagonals instead of growing without bound.
 inline constexpr double kMaxGrazingScale = 1e3;
-// How far Embree's copy of each fragment is grown: ~30 float ulps of a coordinate in the centred
-// box, so Embree's float rounding cannot lose a candidate the double test would accept.
-inline constexpr double kGrowRelative = 1e-6;
+// How far Embree's copy of each fragment is grown. Float rounding moves a ray by ~1e-7 diagonals
+// across its length; where the ray meets a plane at a sine s, that moves the meeting point by
+// ~1e-7 / s in the plane. 1e-4 covers every ray down to s = 1e-3 (kMaxGrazingScale), so Embree
+// cannot lose a candidate the double test would accept there.
+inline constexpr double kGrowRelative = 1e-4;
 
 // A ray from origin along dir (any nonzero length); points are origin + t * dir.
 struct Ray {
@@ -91,6 +93,10 @@ class EmbreeScene {
   // Exactly all_hits(ray).front(): the nearest hit (smallest fragment id on an exact tie). A
   // fragment tied with it (tie_reason) is equally entitled to be first. Thread-safe.
   std::optional<Hit> first_hit(const Ray& ray) const;
+  // The nearest of hit(ray, f) over every fragment f, without Embree: O(fragments), for the rays
+  // where Embree's float candidates cannot be trusted (a ray meeting a plane at a sine below
+  // 1 / kMaxGrazingScale may lose its candidate). Same tie-breaking as first_hit.
+  std::optional<Hit> first_hit_exhaustive(const Ray& ray) const;
   // The double-precision decision for one fragment, without Embree: where the ray meets it, if it
   // does. all_hits returns exactly these hits for the fragments Embree proposes.
   std::optional<Hit> hit(const Ray& ray, std::uint32_t fragment) const;

@@ -18,12 +18,16 @@ std::string describe(const std::optional<Hit>& h) {
 
 HitVerdict judge_first_hits(const std::optional<Hit>& bsp, const std::optional<Hit>& embree, const Ray& ray,
                             const EmbreeScene& scene) {
-  if (!bsp && !embree) return HitVerdict::Agree;
-  if (!bsp || !embree) return HitVerdict::Mismatch;
-  if (bsp->fragment == embree->fragment) return HitVerdict::Agree;
+  const auto same = [](const std::optional<Hit>& a, const std::optional<Hit>& b) {
+    return a.has_value() == b.has_value() && (!a || a->fragment == b->fragment);
+  };
+  if (same(bsp, embree)) return HitVerdict::Agree;
+  const std::optional<Hit> truth = scene.first_hit_exhaustive(ray);
+  if (same(bsp, truth)) return HitVerdict::AgreeExhaustive;
+  if (!bsp || !truth) return HitVerdict::Mismatch;
   const std::optional<Hit> claimed = scene.hit(ray, bsp->fragment);
   if (!claimed) return HitVerdict::Mismatch;
-  switch (scene.tie_reason(ray, *claimed, *embree)) {
+  switch (scene.tie_reason(ray, *claimed, *truth)) {
     case TieReason::Coplanar: return HitVerdict::TieCoplanar;
     case TieReason::Edge: return HitVerdict::TieEdge;
     case TieReason::Boundary: return HitVerdict::TieBoundary;
@@ -39,8 +43,10 @@ RayShootCheck check_ray_shooting(const Tree& tree, const EmbreeScene& embree, st
     const std::optional<Hit> got = shoot_ray(tree, ray).hit;
     ++out.rays;
     out.hits += expected.has_value();
-    switch (judge_first_hits(got, expected, ray, embree)) {
-      case HitVerdict::Agree: break;
+    const HitVerdict verdict = judge_first_hits(got, expected, ray, embree);
+    out.exhaustive += verdict != HitVerdict::Agree;
+    switch (verdict) {
+      case HitVerdict::Agree: case HitVerdict::AgreeExhaustive: break;
       case HitVerdict::TieCoplanar: ++out.ties_coplanar; break;
       case HitVerdict::TieEdge: ++out.ties_edge; break;
       case HitVerdict::TieBoundary: ++out.ties_boundary; break;
@@ -66,6 +72,7 @@ RayShootCheck check_ray_shooting(const Tree& tree, const ValidationSettings& set
 nlohmann::json to_json(const RayShootCheck& c) {
   return {{"rays", c.rays},
           {"hits", c.hits},
+          {"exhaustive", c.exhaustive},
           {"ties", c.ties()},
           {"ties_coplanar", c.ties_coplanar},
           {"ties_edge", c.ties_edge},

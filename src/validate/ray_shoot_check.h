@@ -2,7 +2,10 @@
 // Checking the tree's ray shooting (metrics/ray_shoot.h) against Embree's first hit, ray by ray:
 // a second correctness check of a tree, independent of the visibility-order check.
 //
-// Verdict per ray: agree when both miss or both name the same fragment; otherwise a tie when the
+// Verdict per ray: agree when the walk and Embree both miss or name the same fragment. Otherwise
+// Embree's answer is replaced by the exhaustive double-precision search (first_hit_exhaustive),
+// since Embree's float candidates can miss a fragment met at a grazing angle, and the walk's
+// answer is judged against that: agree when both miss or name the same fragment, a tie when the
 // two fragments' hits are tied by the order check's rule (EmbreeScene::tie_reason), counted by
 // reason; anything else is a mismatch, e.g. the walk
 // skipped the subtree holding the nearest fragment, or it claims a fragment the ray does not meet.
@@ -21,7 +24,7 @@
 
 namespace bsp {
 
-enum class HitVerdict : std::uint8_t { Agree, TieCoplanar, TieEdge, TieBoundary, Mismatch };
+enum class HitVerdict : std::uint8_t { Agree, AgreeExhaustive, TieCoplanar, TieEdge, TieBoundary, Mismatch };
 
 // `scene` holds the fragments both hits index; `embree` is its first hit on the ray.
 HitVerdict judge_first_hits(const std::optional<Hit>& bsp, const std::optional<Hit>& embree, const Ray& ray,
@@ -30,6 +33,7 @@ HitVerdict judge_first_hits(const std::optional<Hit>& bsp, const std::optional<H
 struct RayShootCheck {
   std::uint64_t rays = 0;
   std::uint64_t hits = 0;        // rays on which Embree reports a hit
+  std::uint64_t exhaustive = 0;  // rays where Embree disagreed and the exhaustive search judged
   std::uint64_t ties_coplanar = 0;
   std::uint64_t ties_edge = 0;
   std::uint64_t ties_boundary = 0;
