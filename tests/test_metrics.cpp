@@ -378,6 +378,44 @@ TEST(RayShooting, CorruptedTreeDisagreesWithEmbree) {
   EXPECT_GT(check_against_embree(tree, 4).mismatches, 0u);
 }
 
+// A tiny triangle (1e-4 across) seen from 5e4 away: the Plücker products of the ray aimed at its
+// centroid are ~1e-9, far below the rounding of products of vectors 5e4 long.
+TEST(RayShooting, AFarEyeHitsATinyFragmentItAimsAt) {
+  const double s = 1e-4;
+  const Polygon tiny{{{{0.3, 0.2, 0.1}, 0, 0}, {{0.3 + s, 0.2, 0.1}, 0, 0}, {{0.3, 0.2 + s, 0.1}, 0, 0}}, 0};
+  const Plane support = *supporting_plane(tiny);
+  const Vec3 eye{2865.96, 41845.2, 30671.9};
+  int hits = 0;
+  for (double u : {0.2, 0.33, 0.5})
+    for (double v : {0.2, 0.33}) {
+      const Vec3 target = tiny.verts[0].p + Vec3{u * s, v * s, 0};
+      const Ray ray{eye, normalize(target - eye)};
+      hits += ray_polygon_hit(ray, tiny, support).has_value();
+    }
+  EXPECT_EQ(hits, 6);
+}
+
+// Scenes whose features are a few plane_eps wide put fragments up to plane_eps outside their cells
+// and tiny fragments far from the eyes: the walk must still find every first hit.
+class RayShootingDegenerate : public ::testing::TestWithParam<std::tuple<std::string, std::string>> {};
+
+TEST_P(RayShootingDegenerate, FirstHitEqualsTheExactSearchOnEveryRay) {
+  const auto& [heuristic, scene] = GetParam();
+  const Tree tree = build_scene(scene, 600, heuristic);
+  const RayShootCheck c = check_against_embree(tree, 2);
+  EXPECT_EQ(c.mismatches, 0u) << "of " << c.rays << " rays; first: "
+                              << (c.first_problems.empty() ? "" : c.first_problems.front());
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, RayShootingDegenerate,
+                         ::testing::Combine(::testing::Values("first", "crystal", "naylor", "halving"),
+                                            ::testing::Values("near-degenerate", "terrain")),
+                         [](const ::testing::TestParamInfo<std::tuple<std::string, std::string>>& info) {
+                           std::string name = std::get<0>(info.param) + "_" + std::get<1>(info.param);
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
 using RayCase = std::tuple<std::string, std::string, Shape, bool>;  // heuristic, scene, shape, incremental
 
 class RayShootingEveryHeuristic : public ::testing::TestWithParam<RayCase> {};

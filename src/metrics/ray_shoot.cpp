@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 namespace bsp {
@@ -50,7 +51,7 @@ class Walker {
     while (!stack_.empty()) {
       const Step s = stack_.back();
       stack_.pop_back();
-      if (shot_.hit && s.t0 >= shot_.hit->t) break;
+      if (shot_.hit && s.t0 >= shot_.hit->t) continue;
       if (s.stored_only) {
         test_fragments(tree_.nodes[s.node]);
         continue;
@@ -71,21 +72,23 @@ class Walker {
     const Plane& plane = tree_.planes[node.plane];
     const double d0 = plane.distance(ray_.origin), rate = dot(plane.n, ray_.dir);
     const double da = d0 + s.t0 * rate, db = d0 + s.t1 * rate;
-    const bool a_front = da > 0, b_front = db > 0;
-    if (a_front == b_front) {
-      // Wholly on one side; a segment ending on the plane may still meet its fragments there.
-      const std::uint32_t side = a_front ? node.front : node.back;
-      if (side != kNull) stack_.push_back({side, s.t0, s.t1, false});
-      const double eps = tree_.tol.plane_eps;
-      if (std::abs(da) <= eps || std::abs(db) <= eps) test_fragments(node);
-      return;
-    }
-    const double tc = std::clamp(-d0 / rate, s.t0, s.t1);
-    const std::uint32_t near_side = a_front ? node.front : node.back;
-    const std::uint32_t far_side = a_front ? node.back : node.front;
-    if (far_side != kNull) stack_.push_back({far_side, tc, s.t1, false});
-    if (node.count) stack_.push_back({s.node, tc, tc, true});
-    if (near_side != kNull) stack_.push_back({near_side, s.t0, tc, false});
+    const bool front_first = da > 0 || (da == 0 && rate < 0);
+    const Segment first = within(front_first ? 1.0 : -1.0, d0, rate, s), last = within(front_first ? -1.0 : 1.0, d0, rate, s);
+    const std::uint32_t first_side = front_first ? node.front : node.back;
+    const std::uint32_t last_side = front_first ? node.back : node.front;
+    if (last_side != kNull && last.t0 <= last.t1) stack_.push_back({last_side, last.t0, last.t1, false});
+    const bool near_plane = (da <= 0) != (db <= 0) || std::min(std::abs(da), std::abs(db)) <= tree_.tol.plane_eps;
+    if (node.count && near_plane) stack_.push_back({s.node, last.t0, last.t0, true});
+    if (first_side != kNull && first.t0 <= first.t1) stack_.push_back({first_side, first.t0, first.t1, false});
+  }
+
+  // The part of the segment where side * distance > -plane_eps (side +1: the front half-space
+  // grown by the tolerance, -1: the back one); t0 > t1 when there is none.
+  Segment within(double side, double d0, double rate, const Step& s) const {
+    const double eps = tree_.tol.plane_eps, d = side * d0, r = side * rate;
+    if (r == 0.0) return d > -eps ? Segment{s.t0, s.t1} : Segment{1.0, 0.0};
+    const double edge = (-eps - d) / r;
+    return r > 0 ? Segment{std::max(s.t0, edge), s.t1} : Segment{s.t0, std::min(s.t1, edge)};
   }
 
   void test_fragments(const Node& node) {
@@ -102,13 +105,23 @@ class Walker {
   std::vector<Step> stack_;
 };
 
+// The ray's Plücker product with the edge a -> b (ray_shoot.h), computed from the edge's
+// lexicographically smaller end, so that the edge b -> a gets exactly the opposite value.
+double plucker_side(const Ray& ray, const Vec3& a, const Vec3& b) {
+  const bool a_first = std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+  const Vec3& u = a_first ? a : b;
+  const Vec3& w = a_first ? b : a;
+  const double s = dot(w - u, cross(ray.dir, u - ray.origin));
+  return a_first ? s : -s;
+}
+
 }  // namespace
 
 std::optional<double> ray_polygon_hit(const Ray& ray, const Polygon& poly, const Plane& support) {
   const auto& v = poly.verts;
   bool pos = true, neg = true;  // every Plücker product so far is >= 0 / <= 0
   for (std::size_t i = 0, k = v.size(); i < k && (pos || neg); ++i) {
-    const double s = dot(ray.dir, cross(v[i].p - ray.origin, v[(i + 1) % k].p - ray.origin));
+    const double s = plucker_side(ray, v[i].p, v[(i + 1) % k].p);
     pos &= s >= 0;
     neg &= s <= 0;
   }

@@ -1,13 +1,14 @@
 #pragma once
 // Ray shooting: the first fragment a ray hits, found by walking the tree front to back along the
 // ray (the classic BSP ray traversal; Naylor's E_line, expected_cost.h, models its cost). The walk
-// keeps a stack of (node, tmin, tmax) segments of the ray clipped to the scene box: at a node whose
-// plane the segment crosses at t_c it visits the near side on [tmin, t_c], then the fragments stored
-// on the plane at t_c, then the far side on [t_c, tmax]; a segment wholly on one side visits that
-// side only. Coarse leaves test all their fragments. The walk stops at the first segment starting
-// at or beyond the nearest hit found so far: segments are popped in order of increasing tmin, and
-// every fragment lies in the cell of the node storing it, so nothing later can be nearer (up to
-// ties within the plane tolerance). No recursion.
+// keeps a stack of (node, tmin, tmax) segments of the ray clipped to the scene box. A fragment lies
+// in the cell of the node storing it only up to plane_eps (the build files a fragment within
+// plane_eps of a plane on one side of it), so at a node the walk visits the near side on the part
+// of the segment within plane_eps of the near half-space, then the fragments stored at the node
+// when the segment comes within plane_eps of its plane, then the far side on the part within
+// plane_eps of the far half-space; a segment farther than plane_eps from the plane visits one side
+// only. Coarse leaves test all their fragments. Segments starting at or beyond the nearest hit
+// found so far are skipped: nothing they hold can be nearer. No recursion.
 //
 // Ray and Hit are those of the Embree checker (validate/embree_scene.h), whose first_hit must give
 // the same answer on every ray (ties aside): an independent check of the tree.
@@ -22,7 +23,11 @@ namespace bsp {
 // Where the ray meets the convex polygon, as the ray parameter t > 0 on the polygon's supporting
 // plane `support`; nullopt when it misses or runs parallel to the plane. Inclusion uses the signs
 // of the ray's Plücker products with the polygon's edges (all >= 0 or all <= 0), which are exactly
-// opposite for an edge shared by two polygons, so a ray cannot slip between neighbours.
+// opposite for an edge shared by two polygons, so a ray cannot slip between neighbours. Each
+// product is taken as e · (dir × (u - origin)) from the edge's lexicographically smaller end u:
+// the cross product then only cancels down to the ray's distance from u, so a far eye looking at
+// a tiny fragment keeps the sign (the plain dir · ((a - o) × (b - o)) loses it to rounding of
+// |a - o|^2, at 5e4 units for a fragment 1e-4 wide).
 std::optional<double> ray_polygon_hit(const Ray& ray, const Polygon& poly, const Plane& support);
 
 struct RayShot {
