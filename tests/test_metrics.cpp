@@ -550,6 +550,19 @@ TEST(CompareCommand, ReportsMeanAndIntervalPerHeuristicWithValidation) {
   }
 }
 
+// The incremental build consults no heuristic: one entry labelled "incremental", not one per
+// heuristic holding the same tree.
+TEST(CompareCommand, IncrementalBuildIsOneEntryAndRefusesHeuristics) {
+  const Output r = run_cli("compare --scene random-triangles --n 60 --incremental --order shuffled --seeds 2 "
+                           "--views 1 --rays 20 --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["build"], "incremental");
+  ASSERT_EQ(j["heuristics"].size(), 1u);
+  EXPECT_EQ(j["heuristics"][0]["heuristic"], "incremental");
+  EXPECT_EQ(run_cli("compare --scene random-triangles --n 60 --incremental --heuristics all").code, 2);
+}
+
 TEST(CompareCommand, BadArgumentsExitWithTwo) {
   EXPECT_EQ(run_cli("compare --scene random-triangles --heuristics nosuch").code, 2);
   EXPECT_EQ(run_cli("compare --scene random-triangles --heuristics all --seeds 0").code, 2);
