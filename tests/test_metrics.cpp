@@ -509,6 +509,49 @@ TEST(Statistics, PowerLawFitRecoversExponentCoefficientAndR2) {
   EXPECT_THROW(fit_power_law(std::vector<double>{1, 1}, std::vector<double>{2, 3}), std::invalid_argument);
 }
 
+TEST(Statistics, MedianOfOddAndEvenCounts) {
+  EXPECT_EQ(median(std::vector<double>{5, 1, 3}), 3.0);
+  EXPECT_EQ(median(std::vector<double>{4, 1, 3, 2}), 2.5);
+  EXPECT_EQ(median(std::vector<double>{}), 0.0);
+}
+
+// Exact p-values by counting the C(m+n, m) equally likely rank arrangements under the null.
+TEST(Statistics, MannWhitneyExactPValuesOfSmallSamples) {
+  using V = std::vector<double>;
+  // Complete separation of 3 and 3: 1 arrangement of 20 in each tail.
+  MannWhitney r = mann_whitney_u(V{1, 2, 3}, V{4, 5, 6});
+  EXPECT_EQ(r.u, 0.0);
+  EXPECT_NEAR(r.p, 2.0 / 20, 1e-15);
+  EXPECT_NEAR(mann_whitney_u(V{4, 5, 6}, V{1, 2, 3}).p, 2.0 / 20, 1e-15);
+  EXPECT_EQ(mann_whitney_u(V{4, 5, 6}, V{1, 2, 3}).u, 9.0);
+  // 4 and 4: 2 of 70 arrangements are at least as extreme.
+  EXPECT_NEAR(mann_whitney_u(V{1, 2, 3, 4}, V{5, 6, 7, 8}).p, 2.0 / 70, 1e-15);
+  // Interleaved 1 3 5 | 2 4 6: U = 3; U counts 1, 1, 2, 3 for u = 0..3, so P(U <= 3) = 7/20.
+  r = mann_whitney_u(V{1, 3, 5}, V{2, 4, 6});
+  EXPECT_EQ(r.u, 3.0);
+  EXPECT_NEAR(r.p, 0.7, 1e-15);
+}
+
+// Normal approximation: z = (|U - mn/2| - 1/2) / sigma, sigma^2 = mn/12 ((N+1) - sum(t^3-t)/(N(N-1))).
+TEST(Statistics, MannWhitneyNormalApproximationWithTieCorrection) {
+  using V = std::vector<double>;
+  V low, high;
+  for (int i = 1; i <= 10; ++i) {
+    low.push_back(i);
+    high.push_back(i + 10);
+  }
+  // U = 0, sigma^2 = 100 * 21 / 12 = 175: z = 49.5 / sqrt(175) = 3.7418, p = erfc(z / sqrt 2).
+  EXPECT_NEAR(mann_whitney_u(low, high).p, 1.826717911e-4, 1e-12);
+  // 1 1 2 2 | 2 3 3 3: ranks 1.5 1.5 4 4 | 4 7 7 7, U = 11 - 10 = 1; ties 2, 3, 3 give
+  // sum(t^3 - t) = 54, sigma^2 = 16/12 (9 - 54/56), z = 6.5 / sigma, p = 0.0470574...
+  const MannWhitney r = mann_whitney_u(V{1, 1, 2, 2}, V{2, 3, 3, 3});
+  EXPECT_EQ(r.u, 1.0);
+  EXPECT_NEAR(r.p, 0.04705744628, 1e-10);
+  // Every value tied, or an empty sample: no evidence either way.
+  EXPECT_EQ(mann_whitney_u(V{2, 2, 2}, V{2, 2, 2, 2, 2, 2, 2, 2}).p, 1.0);
+  EXPECT_EQ(mann_whitney_u(V{}, V{1, 2}).p, 1.0);
+}
+
 // ------------------------------------------------------------------------------------------------
 // bspbench compare
 
