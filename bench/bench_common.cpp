@@ -11,6 +11,7 @@
 
 #include "catalog.h"
 #include "common/errors.h"
+#include "common/revision.h"
 #include "metrics/traversal_cost.h"
 #include "metrics/tree_metrics.h"
 #include "split/registry.h"
@@ -129,7 +130,7 @@ void set_tree_counters(benchmark::State& state) {
 }
 
 int run_benchmarks(int argc, char** argv, const std::string& binary) {
-  benchmark::AddCustomContext("git_revision", BSPBENCH_GIT_REVISION);
+  benchmark::AddCustomContext("git_revision", bsp::git_revision());
   std::string storage;
   std::vector<char*> args = with_default_output(argc, argv, binary, storage);
   int n = static_cast<int>(args.size());

@@ -10,6 +10,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -144,4 +146,51 @@ TEST_F(Cli, EveryJsonOutputCarriesTheScenesHashAndBoundingBox) {
     EXPECT_NE(text.find("hash\":\""), std::string::npos) << command;
     EXPECT_NE(text.find("bounds\":{\"hi\""), std::string::npos) << command;
   }
+}
+
+// An incremental build consults no heuristic: naming one is a usage error, and the run is labelled
+// "incremental", not with a heuristic that played no part.
+TEST_F(Cli, IncrementalRefusesAHeuristicAndIsLabelledIncremental) {
+  const std::string scene = "--scene random-triangles --n 50";
+  expect_usage_error("build " + scene + " --incremental --heuristic naylor", "consults no heuristic");
+  expect_usage_error("validate " + scene + " --incremental --heuristic first --views 1", "consults no heuristic");
+  expect_usage_error("build " + scene + " --heuristic first --order shuffled", "--order applies to --incremental");
+  const CliResult r = run("build " + scene + " --incremental --order shuffled --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["heuristic"], "incremental");
+  EXPECT_EQ(j["build"], "incremental");
+  EXPECT_EQ(j["heuristic_params"], nlohmann::json::object());
+}
+
+// `bspbench COMMAND --help` (and -h): the usage line and a meaning for every option the usage line
+// names, exit 0, nothing on stderr.
+TEST_F(Cli, EveryCommandsHelpExplainsEveryOptionOfItsUsageLine) {
+  const std::vector<std::string> commands = {"build",        "compare", "heuristics", "scenes", "generate", "sweep",
+                                             "merge-reports", "regress", "report",     "order",  "validate"};
+  const std::regex option("--[a-z][a-z-]*");
+  for (const auto& name : commands) {
+    for (const char* flag : {"--help", "-h"}) {
+      SCOPED_TRACE(name + " " + flag);
+      const CliResult r = run(name + " " + flag);
+      EXPECT_EQ(r.code, 0);
+      EXPECT_TRUE(r.err.empty()) << r.err;
+      ASSERT_EQ(r.out.rfind("usage: bspbench " + name + " ", 0), 0u) << r.out;
+      const std::string usage = r.out.substr(0, r.out.find('\n'));
+      std::set<std::string> explained;
+      std::istringstream lines(r.out.substr(r.out.find("options:") == std::string::npos ? r.out.size()
+                                                                                         : r.out.find("options:")));
+      for (std::string line; std::getline(lines, line);)
+        if (line.rfind("  --", 0) == 0) explained.insert(line.substr(2, line.find_first_of(" \t", 2) - 2));
+      for (auto it = std::sregex_iterator(usage.begin(), usage.end(), option); it != std::sregex_iterator(); ++it)
+        EXPECT_TRUE(explained.count(it->str())) << it->str() << " has no meaning in\n" << r.out;
+    }
+  }
+}
+
+TEST_F(Cli, VersionNamesTheRevisionAndExitsZero) {
+  const CliResult r = run("--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_TRUE(std::regex_match(r.out, std::regex("bspbench [0-9.]+ \\(revision ([0-9a-f]{12}(-dirty)?|unknown)\\)\n")))
+      << r.out;
 }

@@ -422,7 +422,9 @@ class RayShootingEveryHeuristic : public ::testing::TestWithParam<RayCase> {};
 
 TEST_P(RayShootingEveryHeuristic, FirstHitEqualsEmbreeOnTheValidationRays) {
   const auto& [heuristic, scene, shape, incremental] = GetParam();
-  const Tree tree = build_scene(scene, 200, heuristic, {.shape = shape, .incremental = incremental});
+  const BuildOptions opts{.shape = shape, .incremental = incremental};
+  const Tree tree = incremental ? build_incremental_tree(make_scene(scene, {{"n", "200"}, {"seed", "3"}}).polygons, opts)
+                                : build_scene(scene, 200, heuristic, opts);
   const RayShootCheck c = check_against_embree(tree, 4);
   EXPECT_GT(c.hits, c.rays / 4);
   EXPECT_EQ(c.mismatches, 0u) << "of " << c.rays << " rays; first: "
@@ -431,17 +433,20 @@ TEST_P(RayShootingEveryHeuristic, FirstHitEqualsEmbreeOnTheValidationRays) {
   EXPECT_LE(c.ties(), c.rays / 100);
 }
 
-std::vector<std::string> heuristic_names() {
-  std::vector<std::string> out;
-  for (const auto& h : heuristics()) out.push_back(h.name);
+// Every heuristic builds recursively; the incremental build consults no heuristic, so it is one case
+// per scene and shape, not one per heuristic holding the same tree.
+std::vector<RayCase> ray_cases() {
+  std::vector<RayCase> out;
+  for (const char* scene : {"random-triangles", "cyclic-overlap", "architecture"})
+    for (Shape shape : {Shape::Strict, Shape::Coarse}) {
+      for (const auto& h : heuristics()) out.emplace_back(h.name, scene, shape, false);
+      out.emplace_back(std::string(kIncrementalLabel), scene, shape, true);
+    }
   return out;
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Registry, RayShootingEveryHeuristic,
-    ::testing::Combine(::testing::ValuesIn(heuristic_names()),
-                       ::testing::Values("random-triangles", "cyclic-overlap", "architecture"),
-                       ::testing::Values(Shape::Strict, Shape::Coarse), ::testing::Bool()),
+    Registry, RayShootingEveryHeuristic, ::testing::ValuesIn(ray_cases()),
     [](const ::testing::TestParamInfo<RayCase>& info) {
       std::string name = std::get<0>(info.param) + "_" + std::get<1>(info.param) + "_" +
                          (std::get<2>(info.param) == Shape::Strict ? "strict" : "coarse") +
@@ -547,6 +552,49 @@ TEST(Statistics, PowerLawFitRecoversExponentCoefficientAndR2) {
   EXPECT_THROW(fit_power_law(std::vector<double>{1, 1}, std::vector<double>{2, 3}), std::invalid_argument);
 }
 
+TEST(Statistics, MedianOfOddAndEvenCounts) {
+  EXPECT_EQ(median(std::vector<double>{5, 1, 3}), 3.0);
+  EXPECT_EQ(median(std::vector<double>{4, 1, 3, 2}), 2.5);
+  EXPECT_EQ(median(std::vector<double>{}), 0.0);
+}
+
+// Exact p-values by counting the C(m+n, m) equally likely rank arrangements under the null.
+TEST(Statistics, MannWhitneyExactPValuesOfSmallSamples) {
+  using V = std::vector<double>;
+  // Complete separation of 3 and 3: 1 arrangement of 20 in each tail.
+  MannWhitney r = mann_whitney_u(V{1, 2, 3}, V{4, 5, 6});
+  EXPECT_EQ(r.u, 0.0);
+  EXPECT_NEAR(r.p, 2.0 / 20, 1e-15);
+  EXPECT_NEAR(mann_whitney_u(V{4, 5, 6}, V{1, 2, 3}).p, 2.0 / 20, 1e-15);
+  EXPECT_EQ(mann_whitney_u(V{4, 5, 6}, V{1, 2, 3}).u, 9.0);
+  // 4 and 4: 2 of 70 arrangements are at least as extreme.
+  EXPECT_NEAR(mann_whitney_u(V{1, 2, 3, 4}, V{5, 6, 7, 8}).p, 2.0 / 70, 1e-15);
+  // Interleaved 1 3 5 | 2 4 6: U = 3; U counts 1, 1, 2, 3 for u = 0..3, so P(U <= 3) = 7/20.
+  r = mann_whitney_u(V{1, 3, 5}, V{2, 4, 6});
+  EXPECT_EQ(r.u, 3.0);
+  EXPECT_NEAR(r.p, 0.7, 1e-15);
+}
+
+// Normal approximation: z = (|U - mn/2| - 1/2) / sigma, sigma^2 = mn/12 ((N+1) - sum(t^3-t)/(N(N-1))).
+TEST(Statistics, MannWhitneyNormalApproximationWithTieCorrection) {
+  using V = std::vector<double>;
+  V low, high;
+  for (int i = 1; i <= 10; ++i) {
+    low.push_back(i);
+    high.push_back(i + 10);
+  }
+  // U = 0, sigma^2 = 100 * 21 / 12 = 175: z = 49.5 / sqrt(175) = 3.7418, p = erfc(z / sqrt 2).
+  EXPECT_NEAR(mann_whitney_u(low, high).p, 1.826717911e-4, 1e-12);
+  // 1 1 2 2 | 2 3 3 3: ranks 1.5 1.5 4 4 | 4 7 7 7, U = 11 - 10 = 1; ties 2, 3, 3 give
+  // sum(t^3 - t) = 54, sigma^2 = 16/12 (9 - 54/56), z = 6.5 / sigma, p = 0.0470574...
+  const MannWhitney r = mann_whitney_u(V{1, 1, 2, 2}, V{2, 3, 3, 3});
+  EXPECT_EQ(r.u, 1.0);
+  EXPECT_NEAR(r.p, 0.04705744628, 1e-10);
+  // Every value tied, or an empty sample: no evidence either way.
+  EXPECT_EQ(mann_whitney_u(V{2, 2, 2}, V{2, 2, 2, 2, 2, 2, 2, 2}).p, 1.0);
+  EXPECT_EQ(mann_whitney_u(V{}, V{1, 2}).p, 1.0);
+}
+
 // ------------------------------------------------------------------------------------------------
 // bspbench compare
 
@@ -586,6 +634,19 @@ TEST(CompareCommand, ReportsMeanAndIntervalPerHeuristicWithValidation) {
     EXPECT_GT(h["validation"]["ray_shoot_rays"].get<int>(), 0);
     EXPECT_EQ(h["runs"].size(), 3u);
   }
+}
+
+// The incremental build consults no heuristic: one entry labelled "incremental", not one per
+// heuristic holding the same tree.
+TEST(CompareCommand, IncrementalBuildIsOneEntryAndRefusesHeuristics) {
+  const Output r = run_cli("compare --scene random-triangles --n 60 --incremental --order shuffled --seeds 2 "
+                           "--views 1 --rays 20 --json");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["build"], "incremental");
+  ASSERT_EQ(j["heuristics"].size(), 1u);
+  EXPECT_EQ(j["heuristics"][0]["heuristic"], "incremental");
+  EXPECT_EQ(run_cli("compare --scene random-triangles --n 60 --incremental --heuristics all").code, 2);
 }
 
 TEST(CompareCommand, BadArgumentsExitWithTwo) {

@@ -1,15 +1,17 @@
 // The sweep engine: suites take every registered heuristic and generator; the journal survives
 // interruptions (torn last line, resume without rerunning); deterministic fields do not depend on
 // the thread count; shards partition a suite and merge back, rejecting duplicate, missing and
-// foreign shards; aggregates recover a known power law; the regression gate passes an identical
-// report and fails a changed fragment count, a 3x faster or slower timing, a missing run and a
-// violation, while a uniformly slower machine passes.
+// foreign shards; aggregates recover a known power law; the declared timing fields alone decide what
+// is a timing; the regression gate passes an identical report and fails a changed fragment count, a
+// missing run, a violation, a ray-shooting mismatch and a group of build times significantly 1.6x
+// slower, while 1.4x slower, faster, one outlier and a uniformly slower machine pass.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -23,6 +25,7 @@
 #include "sweep/record.h"
 #include "sweep/regress.h"
 #include "sweep/report.h"
+#include "sweep/run_job.h"
 #include "sweep/runner.h"
 
 using namespace bsp;
@@ -85,12 +88,59 @@ TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
     for (const auto& j : jobs) {
       keys.insert(j.key);
       scenes.insert(j.scene);
-      heuristics_seen.insert(j.heuristic);
+      if (!j.incremental) heuristics_seen.insert(j.heuristic);
     }
     EXPECT_EQ(keys.size(), jobs.size());
     EXPECT_EQ(scenes.size(), generators().size());
     EXPECT_EQ(heuristics_seen.size(), heuristics().size());
   }
+}
+
+// CI gates on the quick suite, so coarse leaves and the incremental build (one job per scene, size,
+// shape and seed, not one per heuristic) must be in it, on every scene.
+TEST(SweepSuites, QuickSuiteGatesCoarseLeavesAndTheIncrementalBuildOnEveryScene) {
+  std::set<std::string> coarse_scenes, incremental_scenes;
+  std::map<std::string, int> incremental_per_scene;
+  for (const auto& j : expand(find_suite("quick"))) {
+    if (j.shape == Shape::Coarse && !j.incremental) coarse_scenes.insert(j.scene);
+    if (!j.incremental) continue;
+    EXPECT_EQ(j.heuristic, "incremental");
+    incremental_scenes.insert(j.scene);
+    ++incremental_per_scene[j.scene];
+  }
+  EXPECT_EQ(coarse_scenes.size(), generators().size());
+  EXPECT_EQ(incremental_scenes.size(), generators().size());
+  for (const auto& [scene, count] : incremental_per_scene) EXPECT_LE(count, 2 * 2 * 2) << scene;  // sizes x shapes x seeds
+}
+
+// Which fields are timings is declared in record.h, not guessed from a name: a field ending in
+// _seconds that is not declared stays in the metrics and is compared exactly.
+TEST(SweepRecord, DeclaredTimingFieldsAloneAreMovedOutOfTheMetrics) {
+  nlohmann::json metrics{{"fragments", 7}, {"build_seconds", 0.25}, {"renamed_build_seconds", 0.5}};
+  nlohmann::json timings = nlohmann::json::object();
+  split_timings(metrics, timings, "");
+  EXPECT_EQ(timings, (nlohmann::json{{"build_seconds", 0.25}}));
+  EXPECT_EQ(metrics, (nlohmann::json{{"fragments", 7}, {"renamed_build_seconds", 0.5}}));
+  nlohmann::json validation{{"seconds", 1.0}, {"rays_per_second", 2.0}, {"violations", 0}};
+  split_timings(validation, timings, "validation_");
+  EXPECT_TRUE(timings.contains("validation_seconds") && timings.contains("validation_rays_per_second"));
+  EXPECT_EQ(validation, (nlohmann::json{{"violations", 0}}));
+  EXPECT_EQ(find_timing_field("renamed_build_seconds"), nullptr);
+  EXPECT_EQ(timing_field_name(TimingKind::BuildSamples), "build_cpu_samples");
+}
+
+// The run record of one job: build samples per run_job.h (short builds repeated in each batch),
+// the ray-shooting cross-check recorded,
+// and every timing it carries declared.
+TEST(SweepRecord, RunRecordHoldsBuildSamplesAndTheRayShootingCheck) {
+  const nlohmann::json& run = tiny_report()["runs"][0];
+  const auto& samples = run["timings"]["build_cpu_samples"];
+  ASSERT_EQ(samples.size(), static_cast<std::size_t>(kBuildSamples));
+  // A 40- or 80-polygon build takes far less than kMinBatchSeconds, so every batch repeats it.
+  EXPECT_GT(run["timings"]["build_cpu_builds"].get<std::uint64_t>(), 2u * kBuildSamples);
+  EXPECT_GT(run["ray_shooting"]["rays"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(run["ray_shooting"]["mismatches"], 0);
+  for (const auto& [k, v] : run["timings"].items()) EXPECT_NE(find_timing_field(k), nullptr) << k;
 }
 
 TEST(SweepShards, PartitionTheSuiteDeterministically) {
@@ -229,25 +279,42 @@ class RegressGate : public ::testing::Test {
  protected:
   nlohmann::json baseline = tiny_report();
   nlohmann::json current = tiny_report();
-  // A run whose build took long enough to be above the noise floor.
-  static nlohmann::json& slow_run(nlohmann::json& report) {
-    auto& run = report["runs"][3];
-    run["timings"]["build_cpu_seconds"] = 0.5;
-    return run;
+
+  // Gives every run the same calibration and five build samples of a known spread around `time`
+  // (a job's own scale), times `factor` for the runs of `heuristic` (every run when empty).
+  static void set_build_samples(nlohmann::json& report, double factor, const std::string& heuristic = "",
+                                double calibration = 0.1) {
+    constexpr double kSpread[] = {0.98, 0.99, 1.0, 1.01, 1.02};
+    double time = 1e-3;
+    for (auto& run : report["runs"]) {
+      time *= 1.7;  // jobs of different sizes
+      const double f = heuristic.empty() || run["id"]["heuristic"] == heuristic ? factor : 1.0;
+      nlohmann::json samples = nlohmann::json::array();
+      for (double s : kSpread) samples.push_back(time * s * f * calibration / 0.1);
+      run["timings"]["build_cpu_samples"] = samples;
+      run["calibration_seconds"] = calibration;
+    }
   }
-  bool fails() const { return compare_reports(baseline, current, {}).failed(); }
+  void SetUp() override {
+    set_build_samples(baseline, 1.0);
+    set_build_samples(current, 1.0);
+  }
+  RegressResult gate() const { return compare_reports(baseline, current, {}); }
+  bool fails() const { return gate().failed(); }
 };
 
 TEST_F(RegressGate, IdenticalReportPasses) {
-  const RegressResult r = compare_reports(baseline, current, {});
+  const RegressResult r = gate();
   EXPECT_FALSE(r.failed());
   EXPECT_EQ(r.runs_compared, 16u);
   EXPECT_GT(r.values_compared, 16u * 20);
+  EXPECT_EQ(r.timing_groups, 4u);  // 2 scenes x 2 heuristics, each pooling 2 sizes x 2 seeds
+  EXPECT_EQ(r.timing_samples, 16u * kBuildSamples);
 }
 
 TEST_F(RegressGate, OneChangedFragmentCountFails) {
   current["runs"][7]["metrics"]["fragments"] = current["runs"][7]["metrics"]["fragments"].get<std::uint64_t>() + 1;
-  const RegressResult r = compare_reports(baseline, current, {});
+  const RegressResult r = gate();
   ASSERT_TRUE(r.failed());
   ASSERT_EQ(r.changes.size(), 1u);
   EXPECT_EQ(r.changes[0].field, "metrics.fragments");
@@ -262,38 +329,63 @@ TEST_F(RegressGate, FloatWithinTheRelativeToleranceMatchesAndBeyondItFails) {
   EXPECT_TRUE(fails());
 }
 
-TEST_F(RegressGate, TimingThreeTimesFasterOrSlowerFails) {
-  slow_run(baseline);
-  slow_run(current)["timings"]["build_cpu_seconds"] = 0.5 / 3;
-  const RegressResult r = compare_reports(baseline, current, {});
+// An undeclared field named like a timing is a result, compared exactly (record.h).
+TEST_F(RegressGate, UndeclaredSecondsFieldIsComparedExactly) {
+  baseline["runs"][0]["metrics"]["renamed_build_seconds"] = 0.5;
+  current["runs"][0]["metrics"]["renamed_build_seconds"] = 0.5000001;
+  const RegressResult r = gate();
   ASSERT_TRUE(r.failed());
+  EXPECT_EQ(r.changes[0].field, "metrics.renamed_build_seconds");
+}
+
+TEST_F(RegressGate, GroupSignificantlySlowerByTheToleranceFailsAloneAndSmallerSlowdownsPass) {
+  set_build_samples(current, 1.6, "random");
+  const RegressResult r = gate();
+  ASSERT_TRUE(r.failed());
+  ASSERT_EQ(r.changes.size(), 2u);  // the two scenes' "random" groups, nothing else
+  for (const auto& c : r.changes) {
+    EXPECT_EQ(c.what, "slower");
+    EXPECT_NE(c.run.find(" random "), std::string::npos) << c.run;
+    EXPECT_EQ(c.field, "timings.build_cpu_samples");
+  }
+  set_build_samples(current, 1.4, "random");  // significant, but below the 1.5 tolerance
+  EXPECT_FALSE(fails());
+  EXPECT_TRUE(compare_reports(baseline, current, {.time_tolerance = 1.3}).failed());
+}
+
+TEST_F(RegressGate, SpeedUpIsANoteNotAFailure) {
+  set_build_samples(current, 0.5, "first");
+  const RegressResult r = gate();
+  EXPECT_FALSE(r.failed());
+  ASSERT_EQ(r.changes.size(), 2u);
   EXPECT_EQ(r.changes[0].what, "faster");
-  EXPECT_EQ(r.changes[0].field, "timings.build_cpu_seconds");
-  slow_run(current)["timings"]["build_cpu_seconds"] = 0.5 * 3;
-  EXPECT_TRUE(fails());
-  slow_run(current)["timings"]["build_cpu_seconds"] = 0.5 * 2.5;
+}
+
+// One sample of one run hit by a context switch moves neither the median nor the rank test enough.
+TEST_F(RegressGate, OneOutlierSampleDoesNotFail) {
+  current["runs"][3]["timings"]["build_cpu_samples"][2] = 100.0;
   EXPECT_FALSE(fails());
   // Wall times are reported, not gated.
-  slow_run(current)["timings"]["build_seconds"] = 100.0;
+  current["runs"][3]["timings"]["build_seconds"] = 100.0;
   EXPECT_FALSE(fails());
 }
 
 TEST_F(RegressGate, SlowerMachineWithSlowerCalibrationPasses) {
-  slow_run(baseline);
-  for (auto& run : current["runs"]) {
-    for (auto& [k, v] : run["timings"].items()) v = v.get<double>() * 4;
-    run["calibration_seconds"] = run["calibration_seconds"].get<double>() * 4;
-  }
-  slow_run(current)["timings"]["build_cpu_seconds"] = 0.5 * 4;
+  set_build_samples(current, 1.0, "", 0.4);  // every time and the calibration four times longer
   EXPECT_FALSE(fails());
 }
 
-TEST_F(RegressGate, MissingRunAndViolationsFailButANewRunDoesNot) {
+TEST_F(RegressGate, MissingRunViolationsAndRayShootingMismatchesFailButANewRunDoesNot) {
   current["runs"].erase(current["runs"].begin() + 2);
   EXPECT_TRUE(fails());
   current = tiny_report();
   current["runs"][1]["validation"]["violations"] = 1;
   baseline["runs"][1]["validation"]["violations"] = 1;
+  EXPECT_TRUE(fails());
+  current = tiny_report();
+  baseline = tiny_report();
+  current["runs"][1]["ray_shooting"]["mismatches"] = 2;
+  baseline["runs"][1]["ray_shooting"]["mismatches"] = 2;
   EXPECT_TRUE(fails());
   current = tiny_report();
   baseline = tiny_report();

@@ -1,7 +1,7 @@
 // The sweep commands of the real bspbench binary: a suite run as three shards under GNU parallel
 // merges to the unsharded report in every deterministic field, and bad shard sets are rejected;
 // `report` renders every plot it links as a valid PNG; `regress` exits 0 on an identical report, 1
-// on a changed result and 2 on bad input.
+// on a changed result and 2 on bad input, and catches a planted slowdown of one heuristic.
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "sweep/record.h"
@@ -128,4 +129,38 @@ TEST_F(SweepCli, RegressExitsZeroOnIdenticalOneOnChangedAndTwoOnBadInput) {
   std::ofstream(dir_ / "garbage.json") << "{\"schema\": \"bspbench-report\", \"version\": 1}";
   EXPECT_EQ(bspbench("regress --baseline " + base.string() + " --current garbage.json"), 2);
   EXPECT_EQ(bspbench("regress --baseline " + base.string() + " --current " + base.string() + " --time-tolerance 1"), 2);
+}
+
+// The gate on real sweeps: the smoke suite run twice, the second with one heuristic's timed builds
+// planted PLANT_FACTOR times slower (BSPBENCH_PLANT_SLOWDOWN, sweep/run_job.h). Every group of that
+// heuristic (one per scene) fails as slower, and no other group does (results are the gate's other
+// half, tested elsewhere). A bad planting value is a one-line usage error.
+TEST_F(SweepCli, PlantedSlowdownOfOneHeuristicFailsExactlyItsGroups) {
+  constexpr const char* kPlant = "naylor:2";
+  ASSERT_EQ(bspbench("sweep --suite smoke --threads 2 --out base.json --journal-dir j"), 0) << err_;
+  ASSERT_EQ(shell(std::string("BSPBENCH_PLANT_SLOWDOWN=") + kPlant + " " + BSPBENCH_EXE +
+                  " sweep --suite smoke --threads 2 --out planted.json --journal-dir j"),
+            0)
+      << err_;
+  const auto planted = read_report((dir_ / "planted.json").string());
+  EXPECT_EQ(planted["shards"][0]["planted_slowdown"]["heuristic"], "naylor");
+  EXPECT_EQ(bspbench("regress --baseline base.json --current planted.json"), 1) << out_;
+  std::set<std::string> failed_scenes;
+  std::istringstream lines(out_);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("timings.build_cpu_samples") == std::string::npos) continue;
+    EXPECT_EQ(line.rfind("FAIL     slower", 0), 0u) << line;
+    EXPECT_NE(line.find(" naylor strict "), std::string::npos) << line;
+    std::istringstream words(line.substr(line.find("slower") + 6));
+    std::string scene;
+    words >> scene;
+    failed_scenes.insert(scene);
+  }
+  std::set<std::string> scenes;
+  for (const auto& r : planted["runs"]) scenes.insert(r["id"]["scene"].get<std::string>());
+  EXPECT_EQ(failed_scenes, scenes) << out_;
+
+  EXPECT_EQ(shell(std::string("BSPBENCH_PLANT_SLOWDOWN=naylor ") + BSPBENCH_EXE + " sweep --suite smoke --out x.json"), 2);
+  EXPECT_NE(err_.find("BSPBENCH_PLANT_SLOWDOWN"), std::string::npos) << err_;
+  EXPECT_FALSE(fs::exists(dir_ / "x.json"));
 }

@@ -135,3 +135,19 @@ TEST(DegenerateChain, IncrementalInsertionMakesTheSameChainWithoutRecursion) {
   for (std::uint32_t n = 0; n != kNull; n = inc.nodes[n].front) ++depth;
   EXPECT_EQ(depth, 30000u);
 }
+
+// bytes counts what the tree stores, so it is compared exactly by the regression gate: spare
+// capacity (any standard library's growth policy) does not change it.
+TEST(TreeBytes, CountSizesNotCapacities) {
+  const Scene scene = make_scene("random-triangles", {{"n", "200"}});
+  const Tree tree = build(scene.polygons, "first");
+  std::size_t expected = tree.nodes.size() * sizeof(Node) + tree.planes.size() * sizeof(Plane) +
+                         tree.fragment_plane.size() * sizeof(std::uint32_t) + tree.fragments.size() * sizeof(Polygon);
+  for (const auto& f : tree.fragments) expected += f.verts.size() * sizeof(Vertex);
+  EXPECT_EQ(tree.bytes(), expected);
+  Tree roomy = tree;
+  roomy.nodes.reserve(4 * tree.nodes.capacity() + 16);
+  roomy.fragments.reserve(4 * tree.fragments.capacity() + 16);
+  roomy.fragments.front().verts.reserve(64);
+  EXPECT_EQ(roomy.bytes(), tree.bytes());
+}

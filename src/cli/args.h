@@ -8,6 +8,13 @@
 
 namespace bsp::cli {
 
+// One line of a command's --help: an option as written in the usage line, and what it does.
+struct OptionHelp {
+  std::string_view option;
+  std::string_view meaning;
+};
+using OptionHelps = std::vector<OptionHelp>;
+
 class Args {
  public:
   explicit Args(std::vector<std::string> args) : args_(std::move(args)) {}

@@ -35,7 +35,8 @@ int run(Args& args) {
 Command build_command() {
   static const std::string usage =
       std::string(kSceneUsage) + " " + std::string(kTreeUsage) + " " + std::string(kMetricsUsage) + " [--json]";
-  return {"build", usage, "build a tree and print its metrics", run};
+  return {"build", usage, "build a tree and print its metrics", run,
+          concat({kSceneOptions, kTreeOptions, kMetricsOptions, kJsonOption})};
 }
 
 }  // namespace bsp::cli

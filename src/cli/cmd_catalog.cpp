@@ -54,12 +54,13 @@ int run_scenes(Args& args) {
 }  // namespace
 
 Command heuristics_command() {
-  return {"heuristics", "[--json]", "list the splitter heuristics with their parameters", run_heuristics};
+  return {"heuristics", "[--json]", "list the splitter heuristics with their parameters", run_heuristics,
+          {{"--json", "print the list as JSON"}}};
 }
 
 Command scenes_command() {
   return {"scenes", "[--json]", "list the scene generators with their parameters, and the fetched mesh:NAME scenes",
-          run_scenes};
+          run_scenes, {{"--json", "print the list as JSON"}}};
 }
 
 }  // namespace bsp::cli

@@ -20,6 +20,7 @@
 #include "metrics/statistics.h"
 #include "metrics/tree_metrics.h"
 #include "split/registry.h"
+#include "tree/build.h"
 #include "validate/order_check.h"
 #include "validate/ray_shoot_check.h"
 
@@ -65,8 +66,14 @@ CompareSpec parse(Args& args) {
     if (k == "seed") throw UsageError("give the scene's seed with --seed");
   s.seed = static_cast<std::uint64_t>(args.integer("--seed", 0, 9'000'000'000'000'000LL).value_or(1));
   s.seeds = static_cast<std::uint64_t>(args.integer("--seeds", 1, kMaxSeeds).value_or(1));
-  s.heuristics = heuristic_list(args.required("--heuristics"));
   s.options = build_options_from(args, s.seed);
+  const auto heuristics = args.option("--heuristics");
+  // An incremental build consults no heuristic: one tree per seed, labelled "incremental".
+  if (s.options.incremental && heuristics)
+    throw UsageError("--incremental consults no heuristic (the insertion order picks the planes); drop --heuristics");
+  if (!s.options.incremental && !heuristics) throw UsageError("missing option --heuristics");
+  s.heuristics = s.options.incremental ? std::vector<std::string>{std::string(kIncrementalLabel)}
+                                       : heuristic_list(*heuristics);
   s.metrics = metrics_settings_from(args, s.seed);
   s.validation.views = static_cast<int>(s.metrics.views);
   return s;
@@ -211,11 +218,19 @@ int run(Args& args) {
 
 Command compare_command() {
   static const std::string usage =
-      "--scene NAME [--n N] [--seed S] [--scene-param k=v]... --heuristics all|NAME[,NAME]... [--seeds K] "
-      "[--shape strict|coarse] [--incremental [--order given|shuffled]] " +
+      "--scene NAME [--n N] [--seed S] [--scene-param k=v]... (--heuristics all|NAME[,NAME]... | --incremental "
+      "[--order given|shuffled]) [--seeds K] [--shape strict|coarse] " +
       std::string(kMetricsUsage) + " [--json]";
+  static const OptionHelps own = {
+      {"--scene NAME", kSceneOptions[0].meaning},
+      {"--n N", kSceneOptions[1].meaning},
+      {"--seed S", "seed of the first run; run k uses S + k for the scene and the heuristic (default 1)"},
+      {"--scene-param k=v", kSceneOptions[3].meaning},
+      {"--heuristics all|NAME[,NAME]...", "every registered heuristic, or a comma-separated list"},
+      {"--seeds K", "runs per heuristic, each with its own seed (default 1)"}};
   return {"compare", usage,
-          "every heuristic on one scene over K seeds: each metric's mean and 95% interval, and validation", run};
+          "every heuristic on one scene over K seeds: each metric's mean and 95% interval, and validation", run,
+          concat({own, kBuildModeOptions, kMetricsOptions, kJsonOption})};
 }
 
 }  // namespace bsp::cli

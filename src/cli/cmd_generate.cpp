@@ -46,7 +46,8 @@ int run(Args& args) {
 
 Command generate_command() {
   return {"generate", "(--scene NAME [--n N] [--seed S] [--scene-param k=v]... | --input FILE) --out FILE.obj [--json]",
-          "write a scene (generated or mesh:NAME) as an OBJ file", run};
+          "write a scene (generated or mesh:NAME) as an OBJ file", run,
+          concat({kSceneOptions, {{"--out FILE.obj", "where to write the OBJ (atomically)"}}, kJsonOption})};
 }
 
 }  // namespace bsp::cli

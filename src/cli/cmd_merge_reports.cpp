@@ -29,7 +29,8 @@ int run(Args& args) {
 
 Command merge_reports_command() {
   return {"merge-reports", "--out FILE REPORT...",
-          "combine the reports of --shard i/N sweeps (all N shards of one suite) into one report", run};
+          "combine the reports of --shard i/N sweeps (all N shards of one suite) into one report", run,
+          {{"--out FILE", "the merged report"}, {"REPORT...", "the N shard reports, in any order"}}};
 }
 
 }  // namespace bsp::cli

@@ -99,7 +99,11 @@ Command order_command() {
   static const std::string usage =
       std::string(kSceneUsage) + " " + std::string(kTreeUsage) + " --eye X,Y,Z --out PREFIX [--json]";
   return {"order", usage, "write a tree's fragments (PREFIX.obj) and back-to-front order from an eye (PREFIX.order.json)",
-          run};
+          run,
+          concat({kSceneOptions, kTreeOptions,
+                  {{"--eye X,Y,Z", "the eye the order is computed for"},
+                   {"--out PREFIX", "writes PREFIX.obj and PREFIX.order.json"}},
+                  kJsonOption})};
 }
 
 }  // namespace bsp::cli

@@ -15,7 +15,7 @@ int run(Args& args) {
   const std::string current = args.required("--current");
   sweep::RegressOptions options;
   options.time_tolerance = args.real("--time-tolerance").value_or(options.time_tolerance);
-  options.time_floor_seconds = args.real("--time-floor").value_or(options.time_floor_seconds);
+  options.alpha = args.real("--alpha").value_or(options.alpha);
   args.finish();
   const auto result =
       sweep::compare_reports(sweep::read_report(baseline), sweep::read_report(current), options);
@@ -26,8 +26,12 @@ int run(Args& args) {
 }  // namespace
 
 Command regress_command() {
-  return {"regress", "--baseline FILE --current FILE [--time-tolerance X] [--time-floor SECONDS]",
-          "compare a report with a baseline; exit 1 on any changed result or timing past the tolerance", run};
+  return {"regress", "--baseline FILE --current FILE [--time-tolerance X] [--alpha A]",
+          "compare a report with a baseline; exit 1 on any changed result, violation or significant slowdown", run,
+          {{"--baseline FILE", "the reference report (results/baseline.json in CI)"},
+           {"--current FILE", "the report to judge"},
+           {"--time-tolerance X", "slowdown of a group's median build time that fails when significant (default 1.5)"},
+           {"--alpha A", "significance level of the groups' Mann-Whitney U test (default 0.05)"}}};
 }
 
 }  // namespace bsp::cli

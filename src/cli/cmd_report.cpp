@@ -69,7 +69,8 @@ int run(Args& args) {
 
 Command report_command() {
   return {"report", "--in REPORT.json --out DIR",
-          "render a sweep report as DIR/index.html with plots (runs analysis/report.py)", run};
+          "render a sweep report as DIR/index.html with plots (runs analysis/report.py)", run,
+          {{"--in REPORT.json", "a report of sweep or merge-reports"}, {"--out DIR", "where index.html and its plots go"}}};
 }
 
 }  // namespace bsp::cli

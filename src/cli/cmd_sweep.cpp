@@ -1,6 +1,9 @@
-// bspbench sweep: run a suite (or one shard of it) and write the report.
+// bspbench sweep: run a suite (or one shard of it) and write the report. The environment variable
+// BSPBENCH_PLANT_SLOWDOWN=heuristic:factor is for tests only (sweep/run_job.h): it slows one
+// heuristic's timed builds down, so the regression gate can be shown to catch it.
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -19,13 +22,15 @@ void summarize(const nlohmann::json& report, const std::string& out) {
   const auto& s = report["summary"];
   std::cout << "sweep: wrote " << out << ": " << s["runs"] << " runs, " << s["failures"] << " failed jobs, "
             << s["invariant_violations"] << " invariant and " << s["validation_violations"]
-            << " validation violations\n";
+            << " validation violations, " << s["ray_shoot_mismatches"] << " ray-shooting mismatches\n";
   for (const auto& f : report["failures"])
     std::cerr << "sweep: job " << f["id"]["command"].get<std::string>() << " failed: " << f["error"].get<std::string>()
               << "\n";
   for (const auto& r : report["runs"]) {
     const bool broken = r["invariants"]["violations"] != 0 ||
-                        (r["validation"].is_object() && r["validation"]["violations"] != 0);
+                        (r["validation"].is_object() && r["validation"]["violations"] != 0) ||
+                        (r.contains("ray_shooting") && r["ray_shooting"].is_object() &&
+                         r["ray_shooting"]["mismatches"] != 0);
     if (broken) std::cerr << "sweep: violations in " << r["id"]["command"].get<std::string>() << "\n";
   }
 }
@@ -39,6 +44,7 @@ int run(Args& args) {
   const auto journal_dir = args.option("--journal-dir");
   options.fresh = args.flag("--fresh");
   args.finish();
+  if (const char* plant = std::getenv("BSPBENCH_PLANT_SLOWDOWN")) options.plant = sweep::parse_planted_slowdown(plant);
   const sweep::Suite& suite = sweep::find_suite(suite_name);
   options.journal_dir = journal_dir.value_or((std::filesystem::path(out).parent_path() / "journal").string());
   options.log = &std::cerr;
@@ -54,7 +60,13 @@ int run(Args& args) {
 Command sweep_command() {
   return {"sweep",
           "--suite smoke|quick|default|full [--threads N] [--shard i/N] [--out FILE] [--journal-dir DIR] [--fresh]",
-          "run a suite of builds (scenes x heuristics x seeds x sizes), resumable, and write its report", run};
+          "run a suite of builds (scenes x heuristics x seeds x sizes), resumable, and write its report", run,
+          {{"--suite NAME", "which suite (src/sweep/suite.h; README lists them with run times)"},
+           {"--threads N", "jobs run at once (default: OMP_NUM_THREADS or the core count)"},
+           {"--shard i/N", "run only share i of N (0-based) of the suite's jobs; merge with merge-reports"},
+           {"--out FILE", "the report (default results/report.json)"},
+           {"--journal-dir DIR", "where finished jobs are journaled for resuming (default: journal/ beside --out)"},
+           {"--fresh", "discard the journal and run every job again"}}};
 }
 
 }  // namespace bsp::cli

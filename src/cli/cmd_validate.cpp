@@ -38,7 +38,8 @@ int run(Args& args) {
 
 Command validate_command() {
   static const std::string usage = std::string(kSceneUsage) + " " + std::string(kTreeUsage) + " [--views K] [--json]";
-  return {"validate", usage, "check a tree's back-to-front orders from several eyes against Embree ray casts", run};
+  return {"validate", usage, "check a tree's back-to-front orders from several eyes against Embree ray casts", run,
+          concat({kSceneOptions, kTreeOptions, {{"--views K", "eyes to check the order from (default 8)"}}, kJsonOption})};
 }
 
 }  // namespace bsp::cli

@@ -10,6 +10,10 @@
 namespace bsp::cli {
 
 inline constexpr std::string_view kMetricsUsage = "[--views V] [--rays R] [--cell-margin M]";
+inline const OptionHelps kMetricsOptions = {
+    {"--views V", "eyes for the traversal costs (and, in compare, the Embree checks)"},
+    {"--rays R", "random rays for the ray-shooting cost"},
+    {"--cell-margin M", "root cell of the expected costs: the scene box grown by M diagonals, in (0, 10]"}};
 
 // `seed` (the run's) seeds the metric's rays.
 MetricsSettings metrics_settings_from(Args& args, std::uint64_t seed);

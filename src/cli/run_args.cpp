@@ -5,7 +5,6 @@
 
 #include "catalog.h"
 #include "common/errors.h"
-#include "common/rng.h"
 #include "io/mesh_reader.h"
 #include "mesh_scenes.h"
 #include "split/registry.h"
@@ -54,14 +53,21 @@ Scene scene_from_args(Args& args, std::uint64_t& seed) {
 TreeArgs tree_args_from(Args& args, std::uint64_t seed) {
   TreeArgs t;
   t.seed = seed;
-  t.heuristic = args.required("--heuristic");
-  for (const auto& kv : args.options("--param")) t.params.push_back(parse_assignment(kv));
   t.options = build_options_from(args, seed);
+  const auto heuristic = args.option("--heuristic");
+  const auto params = args.options("--param");
+  if (t.options.incremental) {
+    if (heuristic || !params.empty())
+      throw UsageError("--incremental consults no heuristic (the insertion order picks the planes); drop --heuristic");
+    t.heuristic = kIncrementalLabel;
+    return t;
+  }
+  if (!heuristic) throw UsageError("missing option --heuristic");
+  t.heuristic = *heuristic;
+  for (const auto& kv : params) t.params.push_back(parse_assignment(kv));
   find_heuristic(t.heuristic);
   return t;
 }
-
-std::uint64_t insertion_order_seed(std::uint64_t seed) { return stream_seed(seed, 0x04de5); }
 
 BuildOptions build_options_from(Args& args, std::uint64_t seed) {
   BuildOptions options;
@@ -79,19 +85,22 @@ BuildOptions build_options_from(Args& args, std::uint64_t seed) {
 }
 
 Tree build_from_args(const Scene& scene, const TreeArgs& t) {
+  if (t.options.incremental) return build_incremental_tree(scene.polygons, t.options);
   auto splitter = make_splitter(t.heuristic, t.params, t.seed);
   return build_tree(scene.polygons, *splitter, t.options);
 }
 
 nlohmann::json describe_run(const Scene& scene, const TreeArgs& t) {
-  const HeuristicInfo& h = find_heuristic(t.heuristic);
   const nlohmann::json s = scene_json(scene);
+  const nlohmann::json params = t.options.incremental
+                                    ? nlohmann::json::object()
+                                    : ParamSet::resolve(find_heuristic(t.heuristic).params, t.params, t.heuristic).to_json();
   return {{"scene", scene.name},
           {"scene_params", s["params"]},
           {"scene_hash", s["hash"]},
           {"scene_bounds", s["bounds"]},
           {"heuristic", t.heuristic},
-          {"heuristic_params", ParamSet::resolve(h.params, t.params, h.name).to_json()},
+          {"heuristic_params", params},
           {"shape", t.options.shape == Shape::Coarse ? "coarse" : "strict"},
           {"build", t.options.incremental ? "incremental" : "recursive"},
           {"order", t.options.order == InsertOrder::Shuffled ? "shuffled" : "given"},

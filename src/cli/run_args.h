@@ -1,7 +1,10 @@
 #pragma once
 // The options shared by every command that builds a tree:
 //   --scene NAME [--n N] [--seed S] [--scene-param k=v]...  |  --input FILE
-//   --heuristic NAME [--param k=v]... [--shape strict|coarse] [--incremental [--order given|shuffled]]
+//   (--heuristic NAME [--param k=v]... | --incremental [--order given|shuffled]) [--shape strict|coarse]
+// An incremental build consults no heuristic (tree/build_incremental.h: the insertion order picks
+// the planes), so --heuristic with --incremental is a usage error and the run is labelled with the
+// heuristic "incremental" in every JSON.
 #include <cstdint>
 #include <string>
 
@@ -17,7 +20,22 @@ namespace bsp::cli {
 inline constexpr std::string_view kSceneUsage =
     "(--scene NAME [--n N] [--seed S] [--scene-param k=v]... | --input FILE)";
 inline constexpr std::string_view kTreeUsage =
-    "--heuristic NAME [--param k=v]... [--shape strict|coarse] [--incremental [--order given|shuffled]]";
+    "(--heuristic NAME [--param k=v]... | --incremental [--order given|shuffled]) [--shape strict|coarse]";
+
+inline const OptionHelps kSceneOptions = {
+    {"--scene NAME", "a generated scene (bspbench scenes lists them) or mesh:NAME"},
+    {"--n N", "the generator's polygon count parameter"},
+    {"--seed S", "seed of the scene and of the heuristic's randomness (default 1)"},
+    {"--scene-param k=v", "set another generator parameter; repeatable"},
+    {"--input FILE", "read the polygons from a mesh file (OBJ, OFF, PLY, STL) instead of --scene"}};
+inline const OptionHelps kBuildModeOptions = {
+    {"--shape strict|coarse", "one plane per node, or convex sets of polygons in the leaves (default strict)"},
+    {"--incremental", "insert the polygons one at a time (Thibault-Naylor); no heuristic is consulted"},
+    {"--order given|shuffled", "insertion order of an --incremental build: as read, or seeded shuffle"}};
+inline const OptionHelps kTreeOptions = {
+    {"--heuristic NAME", "the splitting-plane heuristic (bspbench heuristics lists them)"},
+    {"--param k=v", "set a heuristic parameter; repeatable"},
+    kBuildModeOptions[0], kBuildModeOptions[1], kBuildModeOptions[2]};
 
 struct TreeArgs {
   std::string heuristic;
@@ -32,8 +50,6 @@ TreeArgs tree_args_from(Args& args, std::uint64_t seed);
 // --shape, --incremental, --order: the build options of a run with `seed` (tree_args_from's part
 // that does not name a heuristic, for commands that run several).
 BuildOptions build_options_from(Args& args, std::uint64_t seed);
-// The seed of a shuffled incremental build's insertion order in a run with `seed`.
-std::uint64_t insertion_order_seed(std::uint64_t seed);
 Tree build_from_args(const Scene& scene, const TreeArgs& t);
 // Identifies a run in every JSON the CLI writes: scene name, params, hash and bounds; heuristic,
 // its resolved params, shape, build order, seed.

@@ -34,7 +34,7 @@ class PlanePool {
   std::uint32_t add(const Plane& p);
   const Plane& operator[](std::uint32_t i) const { return planes_[i]; }
   std::size_t size() const { return planes_.size(); }
-  std::size_t bytes() const { return planes_.capacity() * sizeof(Plane); }
+  std::size_t bytes() const { return planes_.size() * sizeof(Plane); }  // what is stored, not the capacity
 
  private:
   struct Key {

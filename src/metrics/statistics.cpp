@@ -5,6 +5,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace bsp {
 
@@ -88,6 +90,93 @@ PowerFit fit_power_law(std::span<const double> x, std::span<const double> y) {
 
 nlohmann::json to_json(const PowerFit& f) {
   return {{"exponent", f.exponent}, {"coefficient", f.coefficient}, {"r2", f.r2}};
+}
+
+double median(std::span<const double> samples) {
+  if (samples.empty()) return 0;
+  std::vector<double> v(samples.begin(), samples.end());
+  const std::size_t mid = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+  if (v.size() % 2 == 1) return v[mid];
+  const double upper = v[mid];
+  return (*std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid)) + upper) / 2;
+}
+
+namespace {
+
+// Below this many values in both samples (and without ties) the p-value is exact.
+constexpr std::size_t kExactBelow = 8;
+
+struct Ranked {
+  double rank_sum_a = 0;
+  double tie_term = 0;  // sum over groups of tied values of t^3 - t
+};
+
+Ranked rank(std::span<const double> a, std::span<const double> b) {
+  std::vector<std::pair<double, bool>> all;  // value, from a
+  for (double x : a) all.emplace_back(x, true);
+  for (double x : b) all.emplace_back(x, false);
+  std::sort(all.begin(), all.end());
+  Ranked r;
+  for (std::size_t i = 0; i < all.size();) {
+    std::size_t j = i;
+    while (j < all.size() && all[j].first == all[i].first) ++j;
+    const double t = static_cast<double>(j - i), mid_rank = (static_cast<double>(i + j) + 1) / 2;
+    for (std::size_t k = i; k < j; ++k)
+      if (all[k].second) r.rank_sum_a += mid_rank;
+    r.tie_term += t * t * t - t;
+    i = j;
+  }
+  return r;
+}
+
+// P(U <= u) under the null hypothesis for samples of m and n values without ties: the share of the
+// C(m+n, m) rank arrangements with at most u pairs in a's favour, counted by the recursion
+// c(m, n, u) = c(m - 1, n, u - n) + c(m, n - 1, u).
+double exact_cdf(std::size_t m, std::size_t n, double u) {
+  const std::size_t max_u = m * n;
+  // counts[i][j][v]: arrangements of i values of a and j of b with U = v.
+  std::vector<std::vector<std::vector<double>>> counts(m + 1, std::vector<std::vector<double>>(n + 1));
+  for (std::size_t i = 0; i <= m; ++i)
+    for (std::size_t j = 0; j <= n; ++j) {
+      auto& c = counts[i][j];
+      c.assign(i * j + 1, 0.0);
+      if (i == 0 || j == 0) {
+        c[0] = 1;
+        continue;
+      }
+      for (std::size_t v = 0; v <= i * j; ++v) {
+        if (v >= j && v - j < counts[i - 1][j].size()) c[v] += counts[i - 1][j][v - j];
+        if (v < counts[i][j - 1].size()) c[v] += counts[i][j - 1][v];
+      }
+    }
+  double below = 0, total = 0;
+  for (std::size_t v = 0; v <= max_u; ++v) {
+    total += counts[m][n][v];
+    if (static_cast<double>(v) <= u) below += counts[m][n][v];
+  }
+  return below / total;
+}
+
+}  // namespace
+
+MannWhitney mann_whitney_u(std::span<const double> a, std::span<const double> b) {
+  MannWhitney out;
+  if (a.empty() || b.empty()) return out;
+  const double m = static_cast<double>(a.size()), n = static_cast<double>(b.size()), total = m + n;
+  const Ranked r = rank(a, b);
+  out.u = r.rank_sum_a - m * (m + 1) / 2;
+  const double mean_u = m * n / 2;
+  if (r.tie_term == 0 && a.size() < kExactBelow && b.size() < kExactBelow) {
+    // U is symmetric about m n / 2, so the two tails are equal.
+    out.p = std::min(1.0, 2 * exact_cdf(a.size(), b.size(), std::min(out.u, m * n - out.u)));
+    return out;
+  }
+  const double variance = m * n / 12 * ((total + 1) - r.tie_term / (total * (total - 1)));
+  if (!(variance > 0)) return out;
+  const double z = std::max(0.0, std::abs(out.u - mean_u) - 0.5) / std::sqrt(variance);
+  out.p = std::min(1.0, std::erfc(z / std::sqrt(2.0)));
+  return out;
 }
 
 }  // namespace bsp

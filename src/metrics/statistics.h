@@ -42,4 +42,21 @@ struct PowerFit {
 PowerFit fit_power_law(std::span<const double> x, std::span<const double> y);
 nlohmann::json to_json(const PowerFit& f);
 
+// The median (the mean of the middle two for an even count); 0 for no samples.
+double median(std::span<const double> samples);
+
+// The Mann–Whitney U test (Mann and Whitney 1947): are values of `a` systematically larger or
+// smaller than those of `b`? Nonparametric, so one outlier (a timing hit by a context switch) moves
+// it no more than any other value. u is U of `a`: the pairs with a_i > b_j plus half the ties. The
+// two-sided p-value is exact when both samples have fewer than 8 values and nothing is tied
+// (counting the rank arrangements); otherwise it is the normal approximation with tie and
+// continuity corrections (Hollander and Wolfe, Nonparametric Statistical Methods, §4.1), as
+// scipy.stats.mannwhitneyu and Google Benchmark's compare.py compute it. p = 1 when either sample
+// is empty or every value is tied.
+struct MannWhitney {
+  double u = 0;
+  double p = 1;
+};
+MannWhitney mann_whitney_u(std::span<const double> a, std::span<const double> b);
+
 }  // namespace bsp

@@ -25,7 +25,7 @@ struct TreeMetrics {
   std::uint64_t dropped_slivers = 0;  // split parts narrower than plane_eps. Best 0
   std::uint64_t nodes = 0;    // strict: one per distinct plane used. Best 1 (coarse convex input); worst f
   std::uint64_t leaves = 0;   // nodes without children
-  std::uint64_t bytes = 0;    // memory held by the frozen tree
+  std::uint64_t bytes = 0;    // bytes the frozen tree stores (Tree::bytes: sizes, not capacities)
   // --- shape (the root has depth 1)
   std::uint32_t max_depth = 0;       // best ceil(log2(nodes+1)); worst nodes (a chain)
   double mean_depth = 0;             // mean depth of the leaves. Best about log2(nodes); worst nodes (a chain)

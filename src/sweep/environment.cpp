@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "common/hash.h"
+#include "common/revision.h"
 
 namespace bsp::sweep {
 
@@ -50,7 +51,7 @@ std::string host_name() {
 }  // namespace
 
 nlohmann::json environment_json(int threads) {
-  return {{"git_revision", BSPBENCH_GIT_REVISION},
+  return {{"git_revision", git_revision()},
           {"compiler", compiler()},
           {"build_type", BSPBENCH_BUILD_TYPE},
           {"flags", BSPBENCH_CXX_FLAGS},

@@ -9,6 +9,7 @@
 #include "common/errors.h"
 #include "common/hash.h"
 #include "split/registry.h"
+#include "tree/build.h"
 
 namespace bsp::sweep {
 
@@ -42,15 +43,16 @@ std::vector<std::string> scene_names(const SuiteBlock& block) {
 }
 
 std::vector<std::string> heuristic_names(const SuiteBlock& block) {
+  if (block.incremental) return {std::string(kIncrementalLabel)};
   if (!block.heuristics.empty()) return block.heuristics;
   std::vector<std::string> all;
   for (const auto& h : heuristics()) all.push_back(h.name);
   return all;
 }
 
-Job make_job(const GeneratorInfo& g, const std::string& heuristic, Shape shape, std::uint64_t seed,
-             std::uint64_t n, std::uint32_t views) {
-  Job job{g.name, {}, heuristic, shape, seed, n, views, {}};
+Job make_job(const GeneratorInfo& g, const std::string& heuristic, bool incremental, Shape shape,
+             std::uint64_t seed, std::uint64_t n, std::uint32_t views) {
+  Job job{g.name, {}, heuristic, incremental, shape, seed, n, views, {}};
   if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
   if (find_spec(g, "seed")) job.scene_params.emplace_back("seed", std::to_string(seed));
   assign_key(job);
@@ -64,7 +66,7 @@ void expand_block(const SuiteBlock& block, std::vector<Job>& out) {
       for (const auto& h : heuristic_names(block))
         for (auto shape : block.shapes)
           for (auto seed : block.seeds)
-            out.push_back(make_job(g, h, shape, seed, n, block.validation.views_for(n)));
+            out.push_back(make_job(g, h, block.incremental, shape, seed, n, block.validation.views_for(n)));
   }
 }
 
@@ -76,6 +78,7 @@ ParamSet scene_params(const Job& job) {
 }
 
 ParamSet heuristic_params(const Job& job) {
+  if (job.incremental) return ParamSet::resolve({}, {}, job.heuristic);
   const HeuristicInfo& h = find_heuristic(job.heuristic);
   return ParamSet::resolve(h.params, {}, "heuristic " + h.name);
 }
@@ -91,6 +94,7 @@ void assign_key(Job& job) {
   h.add_string(shape_name(job.shape));
   h.add_u64(job.seed);
   h.add_u64(job.validation_views);
+  if (job.incremental) h.add_string("incremental shuffled");
   job.key = h.hex();
 }
 
@@ -138,11 +142,14 @@ std::string definition_hash(const std::string& suite_name, const std::vector<Job
 nlohmann::json job_identity(const Job& job) {
   std::string command = "bspbench build --scene " + job.scene;
   if (job.n > 0) command += " --n " + std::to_string(job.n);
-  command += " --seed " + std::to_string(job.seed) + " --heuristic " + job.heuristic + " --shape " + shape_name(job.shape);
+  command += " --seed " + std::to_string(job.seed) +
+             (job.incremental ? " --incremental --order shuffled" : " --heuristic " + job.heuristic) +
+             " --shape " + shape_name(job.shape);
   return {{"scene", job.scene},
           {"scene_params", scene_params(job).to_json()},
           {"heuristic", job.heuristic},
           {"heuristic_params", heuristic_params(job).to_json()},
+          {"build", job.incremental ? "incremental" : "recursive"},
           {"shape", shape_name(job.shape)},
           {"seed", job.seed},
           {"n", job.n},

@@ -18,7 +18,8 @@ namespace bsp::sweep {
 struct Job {
   std::string scene;
   ParamAssignments scene_params;  // n and seed when the generator has them
-  std::string heuristic;
+  std::string heuristic;  // kIncrementalLabel (tree/build.h) for an incremental build
+  bool incremental = false;  // Thibault–Naylor insertion in a seeded shuffled order; no heuristic
   Shape shape = Shape::Strict;
   std::uint64_t seed = 1;
   std::uint64_t n = 0;  // requested size; 0 when the generator has no `n`
@@ -44,7 +45,7 @@ std::vector<Job> shard_jobs(const std::vector<Job>& jobs, Shard s);
 // exactly when these agree.
 std::string definition_hash(const std::string& suite_name, const std::vector<Job>& jobs);
 
-// {scene, scene_params, heuristic, heuristic_params, shape, seed, n, validation_views}: the identity
+// {scene, scene_params, heuristic, heuristic_params, build, shape, seed, n, validation_views}: the identity
 // printed in reports and regression tables, with the `bspbench build` command that rebuilds the tree.
 nlohmann::json job_identity(const Job& job);
 

@@ -15,15 +15,37 @@ bool non_deterministic(const std::string& key) {
   return false;
 }
 
+constexpr TimingField kTimingFields[] = {
+    {"build_seconds", TimingKind::Wall, "wall time of the first build (the tree that is measured)"},
+    {"build_cpu_samples", TimingKind::BuildSamples,
+     "thread CPU seconds per build, one per timed batch of at least 2 ms (run_job.h)"},
+    {"build_cpu_seconds", TimingKind::BuildSummary, "the median of build_cpu_samples"},
+    {"build_cpu_builds", TimingKind::BuildCount, "builds timed for the samples: depends on the machine's speed"},
+    {"metrics_cpu_seconds", TimingKind::Cpu, "thread CPU seconds of measure_tree"},
+    {"validation_seconds", TimingKind::Wall, "wall time of the Embree order check"},
+    {"validation_rays_per_second", TimingKind::Rate, "rays cast per wall-clock second in the order check"},
+    {"job_seconds", TimingKind::Wall, "wall time of the whole job"},
+};
+
 }  // namespace
 
-bool is_timing_field(std::string_view name) {
-  return name == "seconds" || name.ends_with("_seconds") || name.ends_with("_per_second");
+std::span<const TimingField> timing_fields() { return kTimingFields; }
+
+const TimingField* find_timing_field(std::string_view name) {
+  for (const auto& f : kTimingFields)
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+std::string_view timing_field_name(TimingKind kind) {
+  for (const auto& f : kTimingFields)
+    if (f.kind == kind) return f.name;
+  return {};
 }
 
 void split_timings(nlohmann::json& from, nlohmann::json& timings, const std::string& prefix) {
   for (auto it = from.begin(); it != from.end();) {
-    if (is_timing_field(it.key())) {
+    if (find_timing_field(prefix + it.key())) {
       timings[prefix + it.key()] = it.value();
       it = from.erase(it);
     } else {

@@ -1,11 +1,15 @@
 #pragma once
-// The layout of a run record, and which of its numbers are deterministic.
+// The layout of a run record, and which of its numbers are timings.
 //
-// A run record (analysis/SCHEMA.md) is {key, id, metrics, invariants, validation, timings,
-// calibration_seconds}. Timings are the fields named "seconds" or ending in "_seconds" or
-// "_per_second": split_timings() moves them out of the metrics and validation objects into
-// "timings", so everything else in a record is a deterministic function of the job — identical on
-// any machine, thread count and shard — and compared exactly by the regression gate.
+// A run record (analysis/SCHEMA.md) is {key, id, metrics, invariants, validation, ray_shooting,
+// timings, calibration_seconds}. The timing fields are declared in ONE place, timing_fields():
+// split_timings() moves exactly those out of the metrics and validation objects into "timings",
+// and the regression gate gates exactly the one declared as build samples. Everything else in a
+// record is a deterministic function of the job — identical on any machine, thread count and
+// shard — and compared exactly by the gate. A field that is not declared stays where it is and is
+// compared exactly, whatever its name: renaming a timing without declaring it makes the gate fail
+// loudly instead of silently moving the field between the two comparisons.
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -13,9 +17,30 @@
 
 namespace bsp::sweep {
 
-bool is_timing_field(std::string_view name);
+enum class TimingKind {
+  Wall,          // wall-clock seconds: reported, not gated (on a shared machine they measure the others)
+  Rate,          // per wall-clock second: reported, not gated
+  Cpu,           // thread CPU seconds of one measurement: reported, not gated
+  BuildSamples,  // thread CPU seconds per build, one per timed batch: what the gate compares
+  BuildSummary,  // the median of the build samples, for reports and growth fits
+  BuildCount,    // builds timed for the samples: depends on the machine's speed, so not deterministic
+};
 
-// Moves the timing fields of the flat object `from` into `timings`, their names prefixed by `prefix`.
+struct TimingField {
+  std::string_view name;  // as stored in a run's "timings"
+  TimingKind kind;
+  std::string_view meaning;
+};
+
+// Every timing field of a run record.
+std::span<const TimingField> timing_fields();
+// nullptr when `name` is not a declared timing field.
+const TimingField* find_timing_field(std::string_view name);
+// The declared field of this kind (there is one each of the Build kinds).
+std::string_view timing_field_name(TimingKind kind);
+
+// Moves the fields of the flat object `from` whose prefixed names are declared timing fields into
+// `timings`, under their prefixed names.
 void split_timings(nlohmann::json& from, nlohmann::json& timings, const std::string& prefix);
 
 // The report without anything that depends on when, where or how fast it ran: shard sections,

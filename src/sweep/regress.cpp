@@ -6,35 +6,51 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
-#include <string_view>
+#include <utility>
+#include <vector>
 
 #include "common/errors.h"
+#include "metrics/statistics.h"
+#include "sweep/record.h"
 
 namespace bsp::sweep {
 
 namespace {
 
 // Sections of a run record compared exactly (record.h).
-constexpr const char* kDeterministicSections[] = {"id", "metrics", "invariants", "validation"};
-// A ratio computed from stored doubles can land a rounding error short of the tolerance it was
-// made to reach (a timing divided by exactly 3); this relative slack absorbs that.
-constexpr double kRatioSlack = 1e-12;
-// The timings the gate compares (regress.h).
-constexpr std::string_view kGatedTimingSuffix = "_cpu_seconds";
+constexpr const char* kDeterministicSections[] = {"id", "metrics", "invariants", "validation", "ray_shooting"};
+// Counts in a current run that must be zero: section, field.
+constexpr std::pair<const char*, const char*> kMustBeZero[] = {
+    {"invariants", "violations"}, {"validation", "violations"}, {"ray_shooting", "mismatches"}};
 
 std::string run_label(const nlohmann::json& id) {
   return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + id.value("shape", "?") +
          " n=" + id.value("n", nlohmann::json()).dump() + " seed=" + id.value("seed", nlohmann::json()).dump();
 }
 
+// The timing group of a run (regress.h).
+std::string group_label(const nlohmann::json& id) {
+  return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + id.value("shape", "?");
+}
+
 std::string number_text(double v) {
   char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
+  std::snprintf(buf, sizeof buf, "%.3g", v);
   return buf;
 }
 
+// A section of a run, or null when the run has none.
+const nlohmann::json& section_of(const nlohmann::json& run, const char* section) {
+  static const nlohmann::json none;
+  return run.contains(section) ? run[section] : none;
+}
+
+// A group's calibrated build samples, each divided by its job's median calibrated baseline sample.
+struct TimingGroup {
+  std::vector<double> baseline, current;
+};
+
 struct Comparer {
-  const RegressOptions& options;
   RegressResult& result;
   std::string run;
 
@@ -68,33 +84,52 @@ struct Comparer {
   }
 
   void violations(const nlohmann::json& current) {
-    for (const char* section : {"invariants", "validation"}) {
-      const auto& s = current[section];
-      if (s.is_object() && s.value("violations", std::uint64_t{0}) > 0)
-        note(true, "violations", std::string(section) + ".violations", "", s["violations"].dump());
-    }
-  }
-
-  void timings(const nlohmann::json& b, const nlohmann::json& c) {
-    const double scale = b["calibration_seconds"].get<double>() / c["calibration_seconds"].get<double>();
-    for (const auto& [k, v] : b["timings"].items()) {
-      if (!k.ends_with(kGatedTimingSuffix) || !c["timings"].contains(k) || !v.is_number() ||
-          !c["timings"][k].is_number())
-        continue;
-      const double base = v.get<double>(), cur = c["timings"][k].get<double>() * scale;
-      if (std::max(base, cur) < options.time_floor_seconds) {
-        ++result.timings_below_floor;
-        continue;
-      }
-      ++result.timings_compared;
-      const double ratio = cur / base, tol = options.time_tolerance;
-      if (ratio >= tol * (1 - kRatioSlack))
-        note(true, "slower", "timings." + k, number_text(base), number_text(cur) + " (x" + number_text(ratio) + ")");
-      else if (ratio <= (1 + kRatioSlack) / tol)
-        note(true, "faster", "timings." + k, number_text(base), number_text(cur) + " (x" + number_text(ratio) + ")");
+    for (const auto& [section, field] : kMustBeZero) {
+      const auto& s = section_of(current, section);
+      if (s.is_object() && s.value(field, std::uint64_t{0}) > 0)
+        note(true, "violations", std::string(section) + "." + field, "", s[field].dump());
     }
   }
 };
+
+// The build samples of a run divided by its calibration time; empty when it has none.
+std::vector<double> calibrated_samples(const nlohmann::json& run) {
+  std::vector<double> out;
+  const auto& samples = section_of(run, "timings").value(std::string(timing_field_name(TimingKind::BuildSamples)),
+                                                          nlohmann::json::array());
+  const double calibration = run["calibration_seconds"].get<double>();
+  for (const auto& s : samples)
+    if (s.is_number()) out.push_back(s.get<double>() / calibration);
+  return out;
+}
+
+// Adds a matched pair of runs to its timing group, on the scale of the baseline job's median.
+void add_timings(const nlohmann::json& b, const nlohmann::json& c, TimingGroup& group) {
+  const std::vector<double> base = calibrated_samples(b), cur = calibrated_samples(c);
+  const double scale = median(base);
+  if (base.empty() || cur.empty() || !(scale > 0)) return;
+  for (double x : base) group.baseline.push_back(x / scale);
+  for (double x : cur) group.current.push_back(x / scale);
+}
+
+void judge_timings(const std::map<std::string, TimingGroup>& groups, const RegressOptions& options,
+                   RegressResult& result) {
+  const std::string field = "timings." + std::string(timing_field_name(TimingKind::BuildSamples));
+  for (const auto& [label, g] : groups) {
+    if (g.baseline.empty() || g.current.empty()) continue;
+    ++result.timing_groups;
+    result.timing_samples += g.current.size();
+    const double ratio = median(g.current) / median(g.baseline);
+    const MannWhitney test = mann_whitney_u(g.current, g.baseline);
+    if (!(test.p < options.alpha)) continue;
+    const std::string base = "median 1 (" + std::to_string(g.baseline.size()) + " samples)";
+    const std::string cur = "x" + number_text(ratio) + " (p=" + number_text(test.p) + ")";
+    if (ratio >= options.time_tolerance)
+      result.changes.push_back({true, "slower", label, field, base, cur});
+    else if (ratio <= 1 / options.time_tolerance)
+      result.changes.push_back({false, "faster", label, field, base, cur});
+  }
+}
 
 std::map<std::string, const nlohmann::json*> by_key(const nlohmann::json& records) {
   std::map<std::string, const nlohmann::json*> out;
@@ -105,20 +140,22 @@ std::map<std::string, const nlohmann::json*> by_key(const nlohmann::json& record
 void compare_runs(const nlohmann::json& baseline, const nlohmann::json& current, const RegressOptions& options,
                   RegressResult& result) {
   const auto base = by_key(baseline["runs"]), cur = by_key(current["runs"]);
+  std::map<std::string, TimingGroup> groups;
   for (const auto& [key, b] : base) {
-    Comparer cmp{options, result, run_label((*b)["id"])};
+    Comparer cmp{result, run_label((*b)["id"])};
     const auto it = cur.find(key);
     if (it == cur.end()) {
       cmp.note(true, "missing run", "", key, "");
       continue;
     }
     ++result.runs_compared;
-    for (const char* s : kDeterministicSections) cmp.values((*b)[s], (*it->second)[s], s);
+    for (const char* s : kDeterministicSections) cmp.values(section_of(*b, s), section_of(*it->second, s), s);
     cmp.violations(*it->second);
-    cmp.timings(*b, *it->second);
+    add_timings(*b, *it->second, groups[group_label((*b)["id"])]);
   }
   for (const auto& [key, c] : cur)
-    if (!base.count(key)) Comparer{options, result, run_label((*c)["id"])}.note(false, "new run", "", "", key);
+    if (!base.count(key)) Comparer{result, run_label((*c)["id"])}.note(false, "new run", "", "", key);
+  judge_timings(groups, options, result);
 }
 
 }  // namespace
@@ -130,7 +167,7 @@ bool RegressResult::failed() const {
 RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current,
                               const RegressOptions& options) {
   if (!(options.time_tolerance > 1)) throw UsageError("--time-tolerance must be greater than 1");
-  if (!(options.time_floor_seconds >= 0)) throw UsageError("--time-floor must be at least 0");
+  if (!(options.alpha > 0 && options.alpha < 1)) throw UsageError("--alpha must be between 0 and 1");
   RegressResult result;
   if (baseline["suite"] != current["suite"])
     result.changes.push_back({false, "other suite", "", "suite", baseline["suite"].dump(), current["suite"].dump()});
@@ -157,7 +194,7 @@ void print_regress(const RegressResult& result, std::ostream& out) {
   if (!result.changes.empty()) row("verdict", "change", "run", "field", "baseline", "current");
   for (const auto& c : result.changes) row(c.regression ? "FAIL   " : "note   ", c.what, c.run, c.field, c.baseline, c.current);
   out << "regress: " << result.runs_compared << " runs, " << result.values_compared << " values, "
-      << result.timings_compared << " timings compared (" << result.timings_below_floor << " below the noise floor); "
+      << result.timing_groups << " build-time groups (" << result.timing_samples << " samples) compared; "
       << (result.failed() ? "REGRESSION" : "no regression") << "\n";
 }
 

@@ -1,21 +1,32 @@
 #pragma once
-// The regression gate: compares a current report with a baseline, run by run (matched by job key).
+// The regression gate: compares a current report with a baseline, run by run (matched by job key)
+// for results, group by group for build times.
 //
-// Deterministic fields (everything but timings, record.h) must match: integers, strings and
-// booleans exactly; non-integer numbers (expected costs, mean depths) within kFloatRelative,
-// because a sum's last bits may differ between compilers or library versions even though the tree
-// is the same. Every current run must also have zero invariant and zero validation violations, and
-// the current report no failed jobs. A baseline run missing from the current report is a
-// regression; a run or field only the current report has is listed as new, not a regression.
+// Deterministic fields (everything but the timings declared in record.h) must match: integers,
+// strings and booleans exactly; non-integer numbers (expected costs, mean depths) within
+// kFloatRelative, because a sum's last bits may differ between compilers or library versions even
+// though the tree is the same. Every current run must also have zero invariant violations, zero
+// validation violations and zero ray-shooting mismatches, and the current report no failed jobs. A
+// baseline run missing from the current report is a regression; a run or field only the current
+// report has is listed as new, not a regression.
 //
-// Timings: the CPU-time fields (ending in "_cpu_seconds", calibration.h) are compared as ratios to
-// the calibration kernel each run was timed with:
-//   r = (current / current calibration) / (baseline / baseline calibration).
-// A timing is flagged when r >= tolerance (slower) or r <= 1 / tolerance (faster: an unexplained
-// speed-up is as suspicious as a slow-down, e.g. work silently skipped), unless both it and the
-// baseline are below the noise floor (in baseline-machine seconds), where clock granularity and
-// cache effects dominate. Wall times are reported but not gated: on a shared machine they measure
-// the other users as much as the code.
+// Build times are judged per group (scene x heuristic x shape, pooling sizes and seeds), never per
+// run against a fixed factor. Each run holds kBuildSamples thread-CPU samples per build
+// (run_job.h). Every sample is divided by its run's calibration kernel time (calibration.h), so a
+// slower or faster machine cancels out, and then by the median calibrated baseline sample of the
+// same job, so a group's sizes and seeds share one scale: baseline values scatter around 1 and a
+// job k times slower gives values around k. The group's pooled baseline and current values are
+// compared with the two-sided Mann–Whitney U test (metrics/statistics.h), as Google Benchmark's
+// compare.py compares repetitions. The slowdown is the ratio of the pooled medians (current over
+// baseline). A group FAILS only when it is both significant (p < alpha) and slowed by at least
+// time_tolerance; a significant speed-up by the same factor is listed as a note, since faster code
+// is not a regression but may show skipped work. Significance alone is not enough: two sweeps of
+// the same code differ by a few percent (caches shared with other processes), which thirty
+// samples per group make "significant"; the tolerance says how much slower matters.
+//
+// Wall times and the other CPU times (metrics) are reported but not gated: on a shared machine the
+// wall time measures the other users as much as the code, and the metrics' cost is not the
+// product.
 #include <cstdint>
 #include <iosfwd>
 #include <string>
@@ -28,14 +39,14 @@ namespace bsp::sweep {
 inline constexpr double kFloatRelative = 1e-9;
 
 struct RegressOptions {
-  double time_tolerance = 3.0;     // > 1
-  double time_floor_seconds = 0.005;
+  double time_tolerance = 1.5;  // the slowdown (ratio of medians) that fails a significant group; > 1
+  double alpha = 0.05;          // significance level of the Mann–Whitney test; in (0, 1)
 };
 
 struct Change {
-  bool regression = false;  // false: listed for information (new runs or fields)
+  bool regression = false;  // false: listed for information (new runs or fields, speed-ups)
   std::string what;         // e.g. "changed", "slower", "missing run"
-  std::string run;          // scene heuristic shape n seed
+  std::string run;          // scene heuristic shape n seed, or scene heuristic shape for a timing group
   std::string field;
   std::string baseline, current;
 };
@@ -44,12 +55,12 @@ struct RegressResult {
   std::vector<Change> changes;
   std::uint64_t runs_compared = 0;
   std::uint64_t values_compared = 0;
-  std::uint64_t timings_compared = 0;
-  std::uint64_t timings_below_floor = 0;
+  std::uint64_t timing_groups = 0;   // groups whose build times were tested
+  std::uint64_t timing_samples = 0;  // current build samples in those groups
   bool failed() const;
 };
 
-// Throws UsageError when the tolerance is not > 1 or the floor is negative.
+// Throws UsageError when the tolerance is not > 1 or alpha not in (0, 1).
 RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current,
                               const RegressOptions& options);
 // The table of changes, then one summary line.

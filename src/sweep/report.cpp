@@ -17,10 +17,10 @@ void sort_by_key(nlohmann::json& records) {
             [](const nlohmann::json& a, const nlohmann::json& b) { return a["key"] < b["key"]; });
 }
 
-std::uint64_t sum_violations(const nlohmann::json& runs, const char* section) {
+std::uint64_t sum_counts(const nlohmann::json& runs, const char* section, const char* field = "violations") {
   std::uint64_t total = 0;
   for (const auto& r : runs)
-    if (r[section].is_object()) total += r[section].value("violations", std::uint64_t{0});
+    if (r.contains(section) && r[section].is_object()) total += r[section].value(field, std::uint64_t{0});
   return total;
 }
 
@@ -30,8 +30,9 @@ nlohmann::json summary(const nlohmann::json& suite, const nlohmann::json& shards
   for (const auto& s : shards) assigned += s["jobs"].get<std::uint64_t>();
   return {{"runs", runs.size()},
           {"failures", failures.size()},
-          {"invariant_violations", sum_violations(runs, "invariants")},
-          {"validation_violations", sum_violations(runs, "validation")},
+          {"invariant_violations", sum_counts(runs, "invariants")},
+          {"validation_violations", sum_counts(runs, "validation")},
+          {"ray_shoot_mismatches", sum_counts(runs, "ray_shooting", "mismatches")},
           {"complete", runs.size() + failures.size() == assigned && assigned == suite["jobs"].get<std::uint64_t>()}};
 }
 

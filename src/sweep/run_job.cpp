@@ -1,51 +1,131 @@
 #include "sweep/run_job.h"
 
+#include <algorithm>
+#include <charconv>
 #include <chrono>
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "catalog.h"
+#include "common/errors.h"
+#include "metrics/statistics.h"
 #include "metrics/tree_metrics.h"
 #include "split/registry.h"
 #include "sweep/calibration.h"
 #include "sweep/record.h"
 #include "tree/build.h"
 #include "validate/order_check.h"
+#include "validate/ray_shoot_check.h"
 #include "validate/tree_invariants.h"
 
 namespace bsp::sweep {
 
 namespace {
 
+// The ray-shooting walk costs far more per ray than Embree (a 40 000-fragment saddle-grid tree has
+// half a million validation rays): this many, spread over all of them, find a broken walk (it
+// misses whole subtrees, so many rays) while keeping the quick suite within CI's budget.
+constexpr std::size_t kMaxShootRays = 1500;
+
 nlohmann::json invariants_json(const Tree& tree, const Scene& scene) {
   const InvariantReport r = check_tree_invariants(tree, scene.polygons);
   return {{"violations", r.violations}, {"first_problems", r.first_problems}};
 }
 
+ValidationSettings validation_settings(const Job& job) {
+  ValidationSettings settings;
+  settings.views = static_cast<int>(job.validation_views);
+  return settings;
+}
+
 // null when the job asks for no views.
 nlohmann::json validation_json(const Tree& tree, const Job& job, nlohmann::json& timings) {
   if (job.validation_views == 0) return nullptr;
-  ValidationSettings settings;
-  settings.views = static_cast<int>(job.validation_views);
-  nlohmann::json v = to_json(validate_tree(tree, settings));
+  nlohmann::json v = to_json(validate_tree(tree, validation_settings(job)));
   split_timings(v, timings, "validation_");
   return v;
 }
 
+// The ray-shooting cross-check over at most kMaxShootRays of the validation's rays, evenly strided
+// (deterministic); null when the job asks for no views.
+nlohmann::json ray_shooting_json(const Tree& tree, const Job& job) {
+  if (job.validation_views == 0) return nullptr;
+  const ValidationSettings settings = validation_settings(job);
+  std::vector<Ray> all;
+  for (const Vec3& eye : validation_eyes(tree.bounds, settings.views)) {
+    const std::vector<Ray> more = validation_rays(tree.fragments, tree.bounds, eye, settings);
+    all.insert(all.end(), more.begin(), more.end());
+  }
+  const std::size_t stride = (all.size() + kMaxShootRays - 1) / kMaxShootRays;
+  std::vector<Ray> rays;
+  for (std::size_t i = 0; i < all.size(); i += std::max<std::size_t>(stride, 1)) rays.push_back(all[i]);
+  return to_json(check_ray_shooting(tree, EmbreeScene(tree.fragments, settings.tie_relative), rays));
+}
+
+Tree build_once(const Job& job, const Scene& scene) {
+  BuildOptions options{.shape = job.shape};
+  if (job.incremental) {
+    options.order = InsertOrder::Shuffled;
+    options.order_seed = insertion_order_seed(job.seed);
+    return build_incremental_tree(scene.polygons, options);
+  }
+  auto splitter = make_splitter(job.heuristic, {}, job.seed);
+  return build_tree(scene.polygons, *splitter, options);
+}
+
+// Spins until this thread has used `seconds` of CPU since `start` (the planted slowdown).
+void burn_until(double start, double seconds) {
+  volatile double sink = 0;
+  while (thread_cpu_seconds() - start < seconds) sink = sink + 1;
+}
+
+// The timed batches of run_job.h: each repeats the build until kMinBatchSeconds of CPU have passed.
+void time_builds(const Job& job, const Scene& scene, double plant, nlohmann::json& timings) {
+  std::vector<double> samples;
+  std::uint64_t builds = 0;
+  for (int s = 0; s < kBuildSamples; ++s) {
+    const double start = thread_cpu_seconds();
+    std::uint64_t batch = 0;
+    do {
+      build_once(job, scene);
+      ++batch;
+    } while (thread_cpu_seconds() - start < kMinBatchSeconds);
+    if (plant > 1) burn_until(start, plant * (thread_cpu_seconds() - start));
+    samples.push_back((thread_cpu_seconds() - start) / static_cast<double>(batch));
+    builds += batch;
+  }
+  timings["build_cpu_samples"] = samples;
+  timings["build_cpu_builds"] = builds;
+  timings["build_cpu_seconds"] = median(samples);
+}
+
 }  // namespace
 
-nlohmann::json run_job(const Job& job) {
+PlantedSlowdown parse_planted_slowdown(const std::string& text) {
+  const auto colon = text.rfind(':');
+  PlantedSlowdown p;
+  const char* end = text.data() + text.size();
+  if (colon != std::string::npos && colon > 0) {
+    p.heuristic = text.substr(0, colon);
+    const auto [ptr, ec] = std::from_chars(text.data() + colon + 1, end, p.factor);
+    if (ec == std::errc() && ptr == end && std::isfinite(p.factor) && p.factor >= 1) return p;
+  }
+  throw UsageError("BSPBENCH_PLANT_SLOWDOWN wants heuristic:factor with factor >= 1, not '" + text + "'");
+}
+
+nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& plant) {
   const auto start = std::chrono::steady_clock::now();
   Scene scene = make_scene(job.scene, job.scene_params);
   check_scene(scene, "scene " + scene.name);
-  auto splitter = make_splitter(job.heuristic, {}, job.seed);
   nlohmann::json timings = nlohmann::json::object();
-  double cpu = thread_cpu_seconds();
-  const Tree tree = build_tree(scene.polygons, *splitter, {.shape = job.shape});
-  timings["build_cpu_seconds"] = thread_cpu_seconds() - cpu;
+  const Tree tree = build_once(job, scene);
+  const bool planted = plant && plant->heuristic == job.heuristic;
+  time_builds(job, scene, planted ? plant->factor : 1.0, timings);
 
   MetricsSettings metric_settings;  // the defaults, with the job's seed for the metric rays
   metric_settings.seed = job.seed;
-  cpu = thread_cpu_seconds();
+  const double cpu = thread_cpu_seconds();
   nlohmann::json metrics = to_json(measure_tree(tree, metric_settings));
   timings["metrics_cpu_seconds"] = thread_cpu_seconds() - cpu;
   split_timings(metrics, timings, "");
@@ -58,7 +138,8 @@ nlohmann::json run_job(const Job& job) {
                         {"id", std::move(id)},
                         {"metrics", std::move(metrics)},
                         {"invariants", invariants_json(tree, scene)},
-                        {"validation", validation_json(tree, job, timings)}};
+                        {"validation", validation_json(tree, job, timings)},
+                        {"ray_shooting", ray_shooting_json(tree, job)}};
   timings["job_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   record["timings"] = std::move(timings);
   return record;

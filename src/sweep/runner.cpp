@@ -14,7 +14,6 @@
 #include "sweep/journal.h"
 #include "sweep/progress.h"
 #include "sweep/report.h"
-#include "sweep/run_job.h"
 
 namespace bsp::sweep {
 
@@ -43,7 +42,8 @@ void resume(const Journal& journal, Work& w) {
   }
 }
 
-void run_pending(Work& w, Journal& journal, double calibration, int threads, Progress* progress) {
+void run_pending(Work& w, Journal& journal, double calibration, int threads, const std::optional<PlantedSlowdown>& plant,
+                 Progress* progress) {
   std::exception_ptr journal_error;
   std::atomic<bool> stop{false};  // the journal failed: results could no longer be kept
   const auto count = static_cast<std::int64_t>(w.pending.size());
@@ -57,7 +57,7 @@ void run_pending(Work& w, Journal& journal, double calibration, int threads, Pro
     nlohmann::json record;
     std::optional<std::string> error;
     try {
-      record = run_job(job);
+      record = run_job(job, plant);
       record["calibration_seconds"] = calibration;
     } catch (const std::exception& e) {
       error = e.what();
@@ -89,6 +89,8 @@ std::string journal_path(const Suite& suite, const SweepOptions& options) {
   const auto jobs = expand(suite);
   std::string name = suite.name + "-" + definition_hash(suite.name, jobs) + "-" + executable_hash();
   if (options.shard) name += "-shard" + std::to_string(options.shard->index) + "of" + std::to_string(options.shard->count);
+  // A planted run must never resume from an honest journal, nor the other way round.
+  if (options.plant) name += "-planted-" + options.plant->heuristic + "-x" + std::to_string(options.plant->factor);
   return (std::filesystem::path(options.journal_dir) / (name + ".jsonl")).string();
 }
 
@@ -114,11 +116,13 @@ nlohmann::json run_sweep(const Suite& suite, const SweepOptions& options) {
   for (const auto& j : w.pending) total_weight += weight(j);
   std::optional<Progress> progress;
   if (options.log) progress.emplace(*options.log, options.log_is_terminal, w.pending.size(), total_weight);
-  run_pending(w, journal, calibration.seconds, threads, progress ? &*progress : nullptr);
+  run_pending(w, journal, calibration.seconds, threads, options.plant, progress ? &*progress : nullptr);
   if (progress) progress->finish();
   nlohmann::json shard_section{{"index", shard.index},       {"count", shard.count},
                                {"jobs", w.assigned.size()},  {"environment", environment_json(threads)},
                                {"calibration", to_json(calibration)}, {"journal", path}};
+  if (options.plant)
+    shard_section["planted_slowdown"] = {{"heuristic", options.plant->heuristic}, {"factor", options.plant->factor}};
   nlohmann::json suite_json{{"name", suite.name}, {"definition_hash", definition_hash(suite.name, jobs)},
                             {"jobs", jobs.size()}};
   return assemble_report(std::move(suite_json), nlohmann::json::array({std::move(shard_section)}), std::move(w.runs),

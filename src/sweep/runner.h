@@ -12,6 +12,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "sweep/job.h"
+#include "sweep/run_job.h"
 #include "sweep/suite.h"
 
 namespace bsp::sweep {
@@ -25,6 +26,7 @@ struct SweepOptions {
   bool fresh = false;  // discard the journal first
   std::ostream* log = nullptr;  // progress and notes; nullptr for silence
   bool log_is_terminal = false;
+  std::optional<PlantedSlowdown> plant;  // TEST ONLY (run_job.h); named in the journal and the report
 };
 
 // The report (report.h). A job that throws is listed under "failures" and not journaled, so the

@@ -31,12 +31,15 @@ struct SceneSizes {
 
 struct SuiteBlock {
   std::vector<std::string> scenes;      // empty: every generator in the catalog
-  std::vector<std::string> heuristics;  // empty: every registered heuristic
+  std::vector<std::string> heuristics;  // empty: every registered heuristic; ignored when incremental
   std::vector<std::uint64_t> sizes;
   std::vector<SceneSizes> scene_sizes;  // overrides `sizes` for the scenes named
   std::vector<std::uint64_t> seeds;
   std::vector<Shape> shapes;
   ValidationPlan validation;
+  // One incremental build (tree/build_incremental.h, seeded shuffled order) per scene, size, shape
+  // and seed instead of one build per heuristic: it consults no heuristic, so it runs once.
+  bool incremental = false;
 };
 
 struct Suite {

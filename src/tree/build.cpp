@@ -4,6 +4,7 @@
 #include <chrono>
 #include <vector>
 
+#include "common/rng.h"
 #include "tree/build_incremental.h"
 #include "tree/build_input.h"
 
@@ -191,5 +192,16 @@ Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildO
   tree.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;
 }
+
+Tree build_incremental_tree(std::span<const Polygon> input, const BuildOptions& options) {
+  struct NoSplitter final : Splitter {
+    SplitChoice choose(const SplitContext&) override { return SplitChoice::none(); }
+  } none;
+  BuildOptions incremental = options;
+  incremental.incremental = true;
+  return build_tree(input, none, incremental);
+}
+
+std::uint64_t insertion_order_seed(std::uint64_t seed) { return stream_seed(seed, 0x04de5); }
 
 }  // namespace bsp

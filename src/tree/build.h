@@ -4,6 +4,7 @@
 // stack. The result is frozen: nodes in pre-order (front child first), fragments grouped by node.
 #include <cstdint>
 #include <span>
+#include <string_view>
 
 #include "geometry/polygon.h"
 #include "split/splitter.h"
@@ -24,5 +25,15 @@ struct BuildOptions {
 // fan-triangulated and slivers dropped (both counted in the stats). Tolerance and bounds come from
 // the input's bounding box. Deterministic: same input, splitter state and options, same tree.
 Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options = {});
+// The heuristic label of an incremental build in every JSON: it consults no heuristic.
+inline constexpr std::string_view kIncrementalLabel = "incremental";
+
+// An incremental build (options.incremental is implied): the insertion order picks every plane, so
+// no splitter takes part and none is asked for.
+Tree build_incremental_tree(std::span<const Polygon> input, const BuildOptions& options);
+
+// The seed of a shuffled incremental build's insertion order in a run with `seed`; the CLI and the
+// sweep derive it alike, so a sweep run's command rebuilds its tree.
+std::uint64_t insertion_order_seed(std::uint64_t seed);
 
 }  // namespace bsp

@@ -3,10 +3,9 @@
 namespace bsp {
 
 std::size_t Tree::bytes() const {
-  std::size_t total = nodes.capacity() * sizeof(Node) + planes.bytes() +
-                      fragment_plane.capacity() * sizeof(std::uint32_t) +
-                      fragments.capacity() * sizeof(Polygon);
-  for (const auto& f : fragments) total += f.verts.capacity() * sizeof(Vertex);
+  std::size_t total = nodes.size() * sizeof(Node) + planes.bytes() +
+                      fragment_plane.size() * sizeof(std::uint32_t) + fragments.size() * sizeof(Polygon);
+  for (const auto& f : fragments) total += f.verts.size() * sizeof(Vertex);
   return total;
 }
 

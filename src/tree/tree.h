@@ -60,6 +60,8 @@ struct Tree {
   BuildStats stats;
 
   bool empty() const { return nodes.empty(); }
+  // The bytes of what the tree stores (sizes, not capacities), so the count is the same with any
+  // standard library's growth policy and can be compared exactly.
   std::size_t bytes() const;
 };
 
