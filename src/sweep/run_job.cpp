@@ -60,7 +60,7 @@ nlohmann::json ray_shooting_json(const Tree& tree, const Job& job) {
   const std::size_t stride = (all.size() + kMaxShootRays - 1) / kMaxShootRays;
   std::vector<Ray> rays;
   for (std::size_t i = 0; i < all.size(); i += std::max<std::size_t>(stride, 1)) rays.push_back(all[i]);
-  return to_json(check_ray_shooting(tree, EmbreeScene(tree.fragments, settings.tie_relative), rays));
+  return to_json(check_ray_shooting(tree, EmbreeScene(tree.fragments, tree.tol.plane_eps), rays));
 }
 
 Tree build_once(const Job& job, const Scene& scene) {
