@@ -87,7 +87,8 @@ TEST_F(Cli, DirectoryAndUnknownExtensionAreNamed) {
 
 TEST_F(Cli, MalformedMeshIsNamed) {
   expect_input_error(write("garbage.obj", "this is not a mesh\nv 1 2\nf 1 2 3 4 5\n"), "malformed");
-  expect_input_error(write("truncated.off", "OFF\n3 1 0\n1 2\n"), "malformed");
+  expect_input_error(write("truncated.off", "OFF\n3 1 0\n1 2\n"),
+                     "header claims 3 vertices and 1 faces but the file has only 14 bytes");
 }
 
 TEST_F(Cli, NonFiniteCoordinatesAreRejected) {
