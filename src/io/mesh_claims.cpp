@@ -54,7 +54,7 @@ class Text {
   std::string_view line() {
     const std::size_t start = std::min(pos_, s_.size());
     const std::size_t end = std::min(s_.find('\n', start), s_.size());
-    pos_ = end + 1;
+    pos_ = std::min(end + 1, s_.size());
     return s_.substr(start, end - start);
   }
   // OFF's comment rule (CGAL's skip_comment_OFF): skip whitespace and lines starting with '#'.
@@ -160,6 +160,18 @@ int ply_type_size(std::string_view t, bool& is_signed) {
   return 0;
 }
 
+bool is_real(std::string_view type) { return type.find("float") == 0 || type == "double"; }
+
+// CGAL reads a vertex's x, y and z as floating point and dereferences a null pointer when one has
+// another type (PLY_element::assign), so those must be float or double.
+void check_ply_coordinate(const std::string& path, const PlyElement& e, std::string_view name, std::string_view type,
+                          bool list) {
+  if ((e.name != "vertex" && e.name != "vertices") || (name != "x" && name != "y" && name != "z")) return;
+  if (list || !is_real(type))
+    fail(path, "PLY vertex coordinate " + std::string(name) + " is " + (list ? "a list" : std::string(type)) +
+                   "; coordinates must be float or double");
+}
+
 // As CGAL's header reader: a property of an unknown type, or a list whose length type is not an
 // integer type, is left out (and its data not read).
 void add_ply_property(const std::string& path, Text& words, std::vector<PlyElement>& elements) {
@@ -167,15 +179,17 @@ void add_ply_property(const std::string& path, Text& words, std::vector<PlyEleme
   PlyProperty p;
   bool is_signed = false;
   std::string_view type = words.token();
-  if (type == "list") {
+  const bool list = type == "list";
+  if (list) {
     const std::string_view count_type = words.token();
-    const bool integer = count_type.find("float") == std::string_view::npos && count_type != "double";
-    p.count_size = integer ? ply_type_size(count_type, p.count_signed) : 0;
+    p.count_size = is_real(count_type) ? 0 : ply_type_size(count_type, p.count_signed);
     type = words.token();
     if (p.count_size == 0) return;
   }
   p.size = ply_type_size(type, is_signed);
-  if (p.size != 0) elements.back().properties.push_back(p);
+  if (p.size == 0) return;
+  check_ply_coordinate(path, elements.back(), words.token(), type, list);
+  elements.back().properties.push_back(p);
 }
 
 void add_ply_element(const std::string& path, Text& words, std::vector<PlyElement>& elements) {
@@ -187,29 +201,33 @@ void add_ply_element(const std::string& path, Text& words, std::vector<PlyElemen
   elements.push_back(std::move(e));
 }
 
-// The header's format and elements, leaving `in` where the records start. Nullopt when CGAL
-// rejects the header itself.
+std::optional<PlyFormat> ply_format(std::string_view line) {
+  Text words(line);
+  words.token();  // CGAL does not look at the tag
+  const std::string_view f = words.token();
+  if (words.token().empty()) return std::nullopt;  // no version
+  if (f == "ascii") return PlyFormat::Ascii;
+  if (f == "binary_little_endian") return PlyFormat::Little;
+  if (f == "binary_big_endian") return PlyFormat::Big;
+  return std::nullopt;
+}
+
+// The header's format and elements, leaving `in` where the records start; nullopt when CGAL
+// rejects the header itself. As CGAL's PLY_reader::init: "ply" on line 1, the format on line 2,
+// then element and property lines up to end_header; other keywords are ignored, an empty line ends
+// the header as malformed.
 std::optional<std::pair<PlyFormat, std::vector<PlyElement>>> ply_header(const std::string& path, Text& in) {
-  if (in.line().substr(0, 3) != "ply") return std::nullopt;
-  std::optional<PlyFormat> format;
+  if (Text(in.line()).token() != "ply") return std::nullopt;
+  const auto format = ply_format(in.line());
+  if (!format) return std::nullopt;
   std::vector<PlyElement> elements;
   while (!in.at_end()) {
     Text words(in.line());
     const std::string_view keyword = words.token();
-    if (keyword == "format") {
-      const std::string_view f = words.token();
-      if (f == "ascii") format = PlyFormat::Ascii;
-      else if (f == "binary_little_endian") format = PlyFormat::Little;
-      else if (f == "binary_big_endian") format = PlyFormat::Big;
-      else return std::nullopt;
-    } else if (keyword == "element") {
-      add_ply_element(path, words, elements);
-    } else if (keyword == "property") {
-      add_ply_property(path, words, elements);
-    } else if (keyword == "end_header") {
-      if (!format) return std::nullopt;
-      return std::make_pair(*format, std::move(elements));
-    }
+    if (keyword.empty()) return std::nullopt;
+    if (keyword == "element") add_ply_element(path, words, elements);
+    else if (keyword == "property") add_ply_property(path, words, elements);
+    else if (keyword == "end_header") return std::make_pair(*format, std::move(elements));
   }
   // CGAL reads on without end_header, into no data, as many records as the header claims.
   fail(path, "the PLY header has no end_header line");

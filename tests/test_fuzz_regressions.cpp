@@ -1,0 +1,55 @@
+// Inputs the libFuzzer targets (tests/fuzz) found crashing, kept here so the normal suite keeps
+// them fixed. Each must give an InputError (or be accepted), never another exception or a crash.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cli_runner.h"
+#include "common/errors.h"
+#include "io/mesh_reader.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class FuzzFindings : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = bsp::testing::fresh_test_dir("bspbench_fuzz_findings"); }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& content) const {
+    std::ofstream(dir_ / name, std::ios::binary) << content;
+    return (dir_ / name).string();
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+// check_mesh_claims stepped past the end of a file whose last line is a comment without a newline
+// (std::out_of_range from string_view::substr).
+TEST_F(FuzzFindings, OffEndingInACommentWithoutNewline) {
+  EXPECT_THROW(bsp::read_mesh(write("comment.off", "OFF\n# c\n#")), bsp::InputError);
+  EXPECT_THROW(bsp::read_mesh(write("counts.off", "OFF\n3 1 0\n0 0 0\n#")), bsp::InputError);
+}
+
+// CGAL's PLY reader dereferences a null pointer when a vertex coordinate is not float or double.
+TEST_F(FuzzFindings, PlyVertexCoordinateOfAnIntegerTypeOrAList) {
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\n";
+  const std::string rest = "property float y\nproperty float z\nelement face 1\n"
+                           "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(bsp::read_mesh(write("float.ply", header + "property float x\n" + rest)).polygons.size(), 1u);
+  EXPECT_THROW(bsp::read_mesh(write("int.ply", header + "property int32 x\n" + rest)), bsp::InputError);
+  EXPECT_THROW(bsp::read_mesh(write("list.ply", header + "property list uchar float x\n" + rest)), bsp::InputError);
+}
+
+// CGAL takes the format from line 2 whatever its words, so "element" there is no element, and a
+// later property line indexed the last element of an empty list.
+TEST_F(FuzzFindings, PlyElementOnTheFormatLineIsNoElement) {
+  EXPECT_THROW(bsp::read_mesh(write("format_line.ply", "ply\nformat ascii 1.0 element vertex 1\nformat x\n"
+                                                       "property float x\nend_header\n0\n")),
+               bsp::InputError);
+}
