@@ -6,9 +6,13 @@
 #include <fstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_runner.h"
 #include "common/errors.h"
 #include "io/mesh_reader.h"
+#include "sweep/regress.h"
+#include "sweep/report.h"
 
 namespace fs = std::filesystem;
 
@@ -22,6 +26,24 @@ class FuzzFindings : public ::testing::Test {
   std::string write(const std::string& name, const std::string& content) const {
     std::ofstream(dir_ / name, std::ios::binary) << content;
     return (dir_ / name).string();
+  }
+
+  // The smallest report read_report accepts: one run with every field a reader uses.
+  static nlohmann::json minimal_report() {
+    const nlohmann::json run = {
+        {"key", "k1"},
+        {"id", {{"scene", "city"}, {"heuristic", "first"}, {"shape", "strict"}, {"n", 10}, {"n_polygons", 10},
+                {"scene_params", nlohmann::json::object()}}},
+        {"metrics", {{"nodes", 3}}},
+        {"invariants", {{"violations", 0}}},
+        {"validation", nullptr},
+        {"timings", {{"build_cpu_seconds", 0.5}}},
+        {"calibration_seconds", 0.1}};
+    return {{"schema", "bspbench-report"}, {"version", 1},
+            {"suite", {{"name", "s"}, {"definition_hash", "h"}, {"jobs", 1}}},
+            {"shards", {{{"index", 0}, {"count", 1}, {"jobs", 1}}}},
+            {"runs", {run}},
+            {"failures", nlohmann::json::array()}};
   }
 
   fs::path dir_;
@@ -52,4 +74,34 @@ TEST_F(FuzzFindings, PlyElementOnTheFormatLineIsNoElement) {
   EXPECT_THROW(bsp::read_mesh(write("format_line.ply", "ply\nformat ascii 1.0 element vertex 1\nformat x\n"
                                                        "property float x\nend_header\n0\n")),
                bsp::InputError);
+}
+
+TEST_F(FuzzFindings, MinimalReportIsAcceptedAndCompared) {
+  const auto path = write("ok.json", minimal_report().dump());
+  const nlohmann::json report = bsp::sweep::read_report(path);
+  EXPECT_FALSE(bsp::sweep::compare_reports(report, report, {}).failed());
+}
+
+// compare_reports indexed a run's missing "validation" through a const json (undefined behaviour:
+// AddressSanitizer saw a heap-use-after-free); read_report now names every field readers use.
+TEST_F(FuzzFindings, RunWithoutAFieldTheReadersUseIsAnInputError) {
+  for (const auto& [section, key] : std::vector<std::pair<std::string, std::string>>{
+           {"", "validation"}, {"id", "n_polygons"}, {"id", "scene_params"}, {"", "calibration_seconds"}}) {
+    nlohmann::json r = minimal_report();
+    (section.empty() ? r["runs"][0] : r["runs"][0][section]).erase(key);
+    EXPECT_THROW(bsp::sweep::read_report(write("no_" + key + ".json", r.dump())), bsp::InputError) << key;
+  }
+}
+
+// Fields of the wrong type made nlohmann::json throw type_error out of read_report, merge and the gate.
+TEST_F(FuzzFindings, ReportFieldsOfTheWrongTypeAreAnInputError) {
+  nlohmann::json schema = minimal_report();
+  schema["schema"] = 5;
+  EXPECT_THROW(bsp::sweep::read_report(write("schema.json", schema.dump())), bsp::InputError);
+  nlohmann::json label = minimal_report();
+  label["runs"][0]["id"]["scene"] = 7;
+  EXPECT_THROW(bsp::sweep::read_report(write("label.json", label.dump())), bsp::InputError);
+  nlohmann::json violations = minimal_report();
+  violations["runs"][0]["invariants"]["violations"] = "none";
+  EXPECT_THROW(bsp::sweep::read_report(write("violations.json", violations.dump())), bsp::InputError);
 }
