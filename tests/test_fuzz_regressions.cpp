@@ -82,11 +82,13 @@ TEST_F(FuzzFindings, MinimalReportIsAcceptedAndCompared) {
   EXPECT_FALSE(bsp::sweep::compare_reports(report, report, {}).failed());
 }
 
-// compare_reports indexed a run's missing "validation" through a const json (undefined behaviour:
-// AddressSanitizer saw a heap-use-after-free); read_report now names every field readers use.
+// compare_reports indexed a run's missing "validation", and aggregation (behind merge-reports) its
+// missing id.scene, through a const json (undefined behaviour: AddressSanitizer saw a
+// heap-use-after-free); read_report now names every field readers use.
 TEST_F(FuzzFindings, RunWithoutAFieldTheReadersUseIsAnInputError) {
   for (const auto& [section, key] : std::vector<std::pair<std::string, std::string>>{
-           {"", "validation"}, {"id", "n_polygons"}, {"id", "scene_params"}, {"", "calibration_seconds"}}) {
+           {"", "validation"}, {"id", "n_polygons"}, {"id", "scene_params"}, {"id", "scene"}, {"id", "shape"},
+           {"", "calibration_seconds"}}) {
     nlohmann::json r = minimal_report();
     (section.empty() ? r["runs"][0] : r["runs"][0][section]).erase(key);
     EXPECT_THROW(bsp::sweep::read_report(write("no_" + key + ".json", r.dump())), bsp::InputError) << key;

@@ -51,10 +51,11 @@ bool is_record(const nlohmann::json& r, std::initializer_list<const char*> objec
   return true;
 }
 
-// The labels every message about a run prints (scene, heuristic, shape), when present.
-bool has_labels(const nlohmann::json& id) {
+// The labels aggregation groups runs by and messages print (scene, heuristic, shape): strings,
+// and present unless `optional`.
+bool has_labels(const nlohmann::json& id, bool optional) {
   for (const char* k : {"scene", "heuristic", "shape"})
-    if (!has(id, k, &nlohmann::json::is_string, true)) return false;
+    if (!has(id, k, &nlohmann::json::is_string, optional)) return false;
   return true;
 }
 
@@ -65,13 +66,13 @@ bool is_run(const nlohmann::json& r) {
   const auto& validation = r["validation"];
   return has(r, "calibration_seconds", &nlohmann::json::is_number) && r["calibration_seconds"].get<double>() > 0 &&
          has(id, "n", &nlohmann::json::is_number_unsigned) && has(id, "n_polygons", &nlohmann::json::is_number) &&
-         has(id, "scene_params", &nlohmann::json::is_object) && has_labels(id) &&
+         has(id, "scene_params", &nlohmann::json::is_object) && has_labels(id, false) &&
          has(r["invariants"], "violations", &nlohmann::json::is_number_unsigned, true) &&
          (validation.is_null() || has(validation, "violations", &nlohmann::json::is_number_unsigned, true));
 }
 
 bool is_failure(const nlohmann::json& f) {
-  return is_record(f, {"id"}) && has_labels(f["id"]) && has(f, "error", &nlohmann::json::is_string, true);
+  return is_record(f, {"id"}) && has_labels(f["id"], true) && has(f, "error", &nlohmann::json::is_string, true);
 }
 
 // The parts readers index into, so a damaged report is an InputError rather than a crash.
@@ -89,8 +90,8 @@ void check_layout(const nlohmann::json& report, const std::string& path) {
   if (!report["runs"].is_array() || !report["failures"].is_array()) bad("\"runs\" and \"failures\" must be arrays");
   for (const auto& r : report["runs"])
     if (!is_run(r))
-      bad("a run record lacks key, id (n, n_polygons, scene_params), metrics, invariants, validation, timings or "
-          "calibration_seconds, or one has the wrong type");
+      bad("a run record lacks key, id (scene, heuristic, shape, n, n_polygons, scene_params), metrics, invariants, "
+          "validation, timings or calibration_seconds, or one has the wrong type");
   for (const auto& f : report["failures"])
     if (!is_failure(f)) bad("a failure record lacks key or id, or one has the wrong type");
 }
