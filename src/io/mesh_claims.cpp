@@ -62,6 +62,21 @@ class Text {
     for (skip_space(); !at_end() && s_[pos_] == '#'; skip_space()) line();
   }
   char peek() const { return at_end() ? '\0' : s_[pos_]; }
+  void skip_char() { pos_ += !at_end(); }
+  // A run of letters and digits, as CGAL reads OFF keywords.
+  std::string_view word() {
+    const std::size_t start = pos_;
+    while (!at_end() && std::isalnum(static_cast<unsigned char>(s_[pos_]))) ++pos_;
+    return s_.substr(start, pos_ - start);
+  }
+  // An integer as `stream >> int` reads one: whitespace, a sign, digits, stopping at anything else.
+  std::optional<long long> integer() {
+    skip_space();
+    const std::size_t start = pos_;
+    if (!at_end() && (s_[pos_] == '+' || s_[pos_] == '-')) ++pos_;
+    while (!at_end() && std::isdigit(static_cast<unsigned char>(s_[pos_]))) ++pos_;
+    return to_integer(s_.substr(start, pos_ - start));
+  }
 
  private:
   std::string_view s_;
@@ -105,24 +120,33 @@ void check_off_face(const std::string& path, std::string_view line, u64 face) {
                    std::to_string(listed));
 }
 
-void check_off(const std::string& path, std::string_view content) {
-  Text in(content);
+// The header as CGAL's File_header_OFF reads it: the keyword (a run of letters and digits, and
+// the character after it), then the counts as ints, the first starting with a digit, or BINARY.
+// Returns nullopt when CGAL rejects the header.
+std::optional<std::pair<long long, long long>> off_counts(const std::string& path, Text& in) {
   in.skip_off_comments();
-  const auto header = off_keyword(in.token());
-  if (!header) return;  // not OFF: CGAL rejects it
+  const auto header = off_keyword(in.word());
+  if (!header) return std::nullopt;
+  in.skip_char();
   in.skip_off_comments();
-  if (std::isalpha(static_cast<unsigned char>(in.peek())))
+  if (std::isalpha(static_cast<unsigned char>(in.peek())) && in.word() == "BINARY")
     fail(path, "binary OFF is not supported (convert it to ASCII OFF, PLY or STL)");
+  if (!std::isdigit(static_cast<unsigned char>(in.peek()))) return std::nullopt;
   std::vector<long long> counts;
-  for (int i = 0; i < 2 + header->n_dimensional; ++i) {
-    in.skip_off_comments();
-    const auto n = to_integer(in.token());
-    if (!n) return;  // CGAL rejects the header
+  for (int i = 0; i < 2 + header->n_dimensional + header->off; ++i) {
+    const auto n = in.integer();
+    if (!n) return std::nullopt;
     counts.push_back(*n);
   }
-  const long long vertices = counts[header->n_dimensional], faces = counts[header->n_dimensional + 1];
+  return std::make_pair(counts[header->n_dimensional], counts[header->n_dimensional + 1]);
+}
+
+void check_off(const std::string& path, std::string_view content) {
+  Text in(content);
+  const auto counts = off_counts(path, in);
+  if (!counts) return;
+  const auto [vertices, faces] = *counts;
   if (vertices < 0 || faces < 0) fail(path, "header claims a negative number of vertices or faces");
-  if (header->off) in.token();  // the edge count, unused
   for (u64 i = 0; i < static_cast<u64>(vertices) + static_cast<u64>(faces); ++i) {
     in.skip_off_comments();
     if (in.at_end())
