@@ -75,6 +75,25 @@ TEST_F(FuzzFindings, OffHeaderReadAsCgalReadsIt) {
   expect_mesh_error("glued.off", "OFF\n0 1 0-1 0 1\n", "face 0 claims -1 vertices");
 }
 
+// CGAL's OFF scanner reads texture coordinates at an uninitialised index (a segfault even on a
+// well-formed STOFF file), indexes vertex and face lines for colours without bounds checks, keeps
+// reading colours once one line had one, casts colour channels to unsigned char and face indices
+// to size_t unchecked.
+TEST_F(FuzzFindings, OffTexturesColoursAndIndicesCgalCannotRead) {
+  expect_mesh_error("textures.off", "STOFF\n# c\n4 2 0\n0 0 0\n1 0 0\n1 1 5\n0 1 0\n4 0 1 2 3\n3 0 1 2 255 0 0\n",
+                    "texture coordinates (ST) is not supported");
+  const std::string rest = "1 0 0\n0 1 0\n3 0 1 2\n";
+  expect_mesh_error("two_channels.off", "COFF\n3 1 0\n0 0 0 1 2\n" + rest, "vertex 0 has a colour CGAL cannot read");
+  expect_mesh_error("channel_300.off", "COFF\n3 1 0\n0 0 0 300 0 0\n" + rest, "vertex 0 has a colour");
+  expect_mesh_error("map_index.off", "COFF\n3 1 0\n0 0 0 149\n" + rest, "vertex 0 has a colour");
+  expect_mesh_error("then_none.off", "COFF\n3 1 0\n0 0 0 255 0 0\n" + rest, "vertex 1 has a colour CGAL cannot read");
+  expect_mesh_error("face_colour.off", "COFF\n3 2 0\n0 0 0\n" + rest + "3 0 2 1 0.5 0.5\n", "face 1 has a colour");
+  expect_mesh_error("negative_index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n",
+                    "face 0 refers to vertex -1 but the file has 3");
+  const std::string coloured = "COFF\n3 1 0\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 0.5 1\n3 0 1 2 7\n";
+  EXPECT_EQ(bsp::read_mesh(write("coloured.off", coloured)).polygons.size(), 1u);
+}
+
 // CGAL's PLY reader dereferences a null pointer when a vertex coordinate is not float or double.
 TEST_F(FuzzFindings, PlyVertexCoordinateOfAnIntegerTypeOrAList) {
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\n";

@@ -1,9 +1,12 @@
 #include "io/mesh_claims.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <climits>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <set>
@@ -18,6 +21,12 @@ namespace {
 using u64 = std::uint64_t;
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem) { throw InputError(path + ": " + problem); }
+
+std::string number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
 
 std::string bytes(std::size_t n) { return std::to_string(n) + (n == 1 ? " byte" : " bytes"); }
 
@@ -83,50 +92,92 @@ class Text {
   std::size_t pos_ = 0;
 };
 
-std::size_t count_tokens(std::string_view line) {
-  Text t(line);
-  std::size_t n = 0;
-  while (!t.token().empty()) ++n;
-  return n;
-}
-
 // ---- OFF: "[ST][C][N][4][n]OFF" (or SKEL), counts, then one line per vertex and per face.
 
 struct OffHeader {
-  bool n_dimensional = false, off = true;
+  bool textures = false, colors = false, normals = false, homogeneous = false, n_dimensional = false, off = true;
 };
 
 std::optional<OffHeader> off_keyword(std::string_view k) {
   OffHeader h;
   std::size_t j = 0;
-  if (k.substr(j, 2) == "ST") j += 2;
-  for (char flag : {'C', 'N', '4'})
-    if (j < k.size() && k[j] == flag) ++j;
-  if (j < k.size() && k[j] == 'n') h.n_dimensional = true, ++j;
+  if (k.substr(j, 2) == "ST") h.textures = true, j += 2;
+  for (auto [flag, set] : {std::pair{'C', &h.colors}, {'N', &h.normals}, {'4', &h.homogeneous}, {'n', &h.n_dimensional}})
+    if (j < k.size() && k[j] == flag) *set = true, ++j;
   if (k.substr(j) == "SKEL") h.off = false;
   else if (k.substr(j) != "OFF") return std::nullopt;
   return h;
 }
 
-// A face line: its first number is how many vertex indices follow (CGAL sizes the face by it).
-void check_off_face(const std::string& path, std::string_view line, u64 face) {
+// The numbers of a vertex or face line as CGAL reads them (`stream >> double` until one fails,
+// after cutting the line at '#'): digits, signs, points and exponents, no hex, inf or nan.
+std::vector<double> off_numbers(std::string_view line) {
   line = line.substr(0, line.find('#'));
-  Text t(line);
-  const std::string first(t.token());
-  const double k = std::strtod(first.c_str(), nullptr);  // CGAL reads it as a double, too
-  const std::size_t listed = count_tokens(line) - 1;
+  std::vector<double> out;
+  for (std::size_t pos = 0;;) {
+    while (pos < line.size() && std::isspace(static_cast<unsigned char>(line[pos]))) ++pos;
+    const std::size_t end = std::min(line.find_first_not_of("0123456789+-.eE", pos), line.size());
+    const std::string text(line.substr(pos, end - pos));
+    char* stop = nullptr;
+    const double x = std::strtod(text.c_str(), &stop);
+    if (stop == text.c_str() || !std::isfinite(x)) return out;  // the stream fails on overflow too
+    out.push_back(x);
+    pos += static_cast<std::size_t>(stop - text.c_str());
+  }
+}
+
+// CGAL reads the numbers after a line's coordinates or indices as a colour: one index into its
+// 149-entry colour map, or three or four channels, integers 0..255 or fractions 0..1, cast to
+// unsigned char. It indexes the map and the line without bounds checks and, once a colour was
+// read, reads one from every later line, so anything else is rejected.
+void check_off_color(const std::string& path, const std::vector<double>& nums, std::size_t first,
+                     const std::string& what, bool& seen) {
+  const std::size_t n = nums.size() - std::min(first, nums.size());
+  const auto bad = [&] { fail(path, what + " has a colour CGAL cannot read"); };
+  if (n == 0) {
+    if (seen || first > nums.size()) bad();
+    return;
+  }
+  seen = true;
+  if (n == 1 && !(nums[first] >= 0 && nums[first] < 149)) bad();
+  if (n == 2 || n > 4) bad();
+  if (n == 1) return;
+  const bool integers = std::all_of(nums.begin() + first, nums.begin() + first + 3, [](double c) { return c == std::floor(c); });
+  for (std::size_t c = first; c < first + 3; ++c)
+    if (!(nums[c] >= 0 && nums[c] <= (integers ? 255.0 : 1.0))) bad();
+}
+
+// A face line: its first number is how many vertex indices follow (CGAL sizes the face by it),
+// each a vertex number CGAL casts to size_t.
+void check_off_face(const std::string& path, const std::vector<double>& nums, long long vertices, u64 face,
+                    const OffHeader& h, bool& colors_seen) {
+  const std::string what = "face " + std::to_string(face);
+  if (nums.empty()) fail(path, what + " does not start with its number of vertices");
+  const double k = nums[0];
+  const std::size_t listed = nums.size() - 1;
   if (!(k >= 0) || k > static_cast<double>(listed))
-    fail(path, "face " + std::to_string(face) + " claims " + first + " vertices but its line lists " +
-                   std::to_string(listed));
+    fail(path, what + " claims " + number(k) + " vertices but its line lists " + std::to_string(listed));
+  const auto size = static_cast<std::size_t>(k);
+  for (std::size_t j = 1; j <= size; ++j)
+    if (!(nums[j] >= 0 && nums[j] < static_cast<double>(vertices)))
+      fail(path, what + " refers to vertex " + number(nums[j]) + " but the file has " + std::to_string(vertices));
+  if (h.colors) check_off_color(path, nums, size + 1, what, colors_seen);
+}
+
+void check_off_vertex(const std::string& path, const std::vector<double>& nums, u64 vertex, const OffHeader& h,
+                      bool& colors_seen) {
+  const std::size_t coordinates = 3 + h.homogeneous;
+  check_off_color(path, nums, coordinates * (1 + h.normals), "vertex " + std::to_string(vertex), colors_seen);
 }
 
 // The header as CGAL's File_header_OFF reads it: the keyword (a run of letters and digits, and
 // the character after it), then the counts as ints, the first starting with a digit, or BINARY.
 // Returns nullopt when CGAL rejects the header.
-std::optional<std::pair<long long, long long>> off_counts(const std::string& path, Text& in) {
+std::optional<std::pair<OffHeader, std::pair<long long, long long>>> off_counts(const std::string& path, Text& in) {
   in.skip_off_comments();
   const auto header = off_keyword(in.word());
   if (!header) return std::nullopt;
+  if (header->textures) fail(path, "OFF with texture coordinates (ST) is not supported");
   in.skip_char();
   in.skip_off_comments();
   if (std::isalpha(static_cast<unsigned char>(in.peek())) && in.word() == "BINARY")
@@ -138,23 +189,26 @@ std::optional<std::pair<long long, long long>> off_counts(const std::string& pat
     if (!n) return std::nullopt;
     counts.push_back(*n);
   }
-  return std::make_pair(counts[header->n_dimensional], counts[header->n_dimensional + 1]);
+  return std::make_pair(*header, std::make_pair(counts[header->n_dimensional], counts[header->n_dimensional + 1]));
 }
 
 void check_off(const std::string& path, std::string_view content) {
   Text in(content);
-  const auto counts = off_counts(path, in);
-  if (!counts) return;
-  const auto [vertices, faces] = *counts;
+  const auto parsed = off_counts(path, in);
+  if (!parsed) return;
+  const auto& [header, counts] = *parsed;
+  const auto [vertices, faces] = counts;
   if (vertices < 0 || faces < 0) fail(path, "header claims a negative number of vertices or faces");
+  bool vertex_colors = false, face_colors = false;
   for (u64 i = 0; i < static_cast<u64>(vertices) + static_cast<u64>(faces); ++i) {
     in.skip_off_comments();
     if (in.at_end())
       fail(path, "header claims " + std::to_string(vertices) + " vertices and " + std::to_string(faces) +
                      " faces but the file has only " + bytes(content.size()) + ": " + std::to_string(i) +
                      " records");
-    const std::string_view line = in.line();
-    if (i >= static_cast<u64>(vertices)) check_off_face(path, line, i - vertices);
+    const std::vector<double> nums = off_numbers(in.line());
+    if (i >= static_cast<u64>(vertices)) check_off_face(path, nums, vertices, i - vertices, header, face_colors);
+    else if (header.colors) check_off_vertex(path, nums, i, header, vertex_colors);
   }
 }
 
