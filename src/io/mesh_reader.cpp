@@ -40,7 +40,6 @@ std::string read_contents(const std::string& path) {
   if (!in) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
   std::ostringstream s;
   s << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
   std::string content = std::move(s).str();
   if (content.empty()) throw InputError(path + ": the file is empty");
   return content;
