@@ -84,7 +84,8 @@ Polygon polygon_on(const Frame& f, std::size_t i, double size, std::uint64_t see
   if (i % 2 == 0) {  // rectangle rotated by a random in-plane direction (dx, dy)
     const double a = size * rng.uniform(kMinExtent, 1), b = size * rng.uniform(kMinExtent, 1);
     const auto [dx, dy] = random_unit_2d(rng);
-    auto corner = [&](double s, double t) {
+    // Init-captures: clang before 16 cannot capture a structured binding (the fuzz build uses clang 14).
+    auto corner = [&, dx = dx, dy = dy](double s, double t) {
       return on_plane(f, centre, s * a * dx - t * b * dy, s * a * dy + t * b * dx);
     };
     poly = quad(corner(-1, -1), corner(1, -1), corner(1, 1), corner(-1, 1));

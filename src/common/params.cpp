@@ -47,7 +47,8 @@ ParamSet ParamSet::resolve(std::span<const ParamSpec> specs, const ParamAssignme
     set.values_[spec.name] = v;
   }
   for (const auto& [key, text] : given) {
-    auto spec = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& s) { return s.name == key; });
+    // An init-capture: clang before 16 cannot capture a structured binding (the fuzz build uses clang 14).
+    auto spec = std::find_if(specs.begin(), specs.end(), [&name = key](const ParamSpec& s) { return s.name == name; });
     if (spec == specs.end()) {
       std::string known;
       for (const auto& s : specs) known += (known.empty() ? "" : ", ") + s.name;

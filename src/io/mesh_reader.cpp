@@ -11,6 +11,7 @@
 
 #include "common/errors.h"
 #include "geometry/tolerance.h"
+#include "io/mesh_claims.h"
 #include "io/mesh_reader_cgal.h"
 #include "io/polygon_cleanup.h"
 
@@ -31,9 +32,17 @@ void check_readable(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": no such file");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory");
+}
+
+// The whole file, read once for check_mesh_claims before CGAL reads it again.
+std::string read_contents(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
-  if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": the file is empty");
+  std::ostringstream s;
+  s << in.rdbuf();
+  std::string content = std::move(s).str();
+  if (content.empty()) throw InputError(path + ": the file is empty");
+  return content;
 }
 
 Box soup_bounds(const std::string& path, const PolygonSoup& soup) {
@@ -72,12 +81,17 @@ std::string diagnose_rejected_text_mesh(const std::string& path) {
 
 Scene read_mesh(const std::string& path) {
   check_readable(path);
+  const std::string content = read_contents(path);
+  check_mesh_claims(path, content, extension_of(path));
   PolygonSoup soup;
   std::string error;
+  const bool obj = extension_of(path) == ".obj";
   if (!read_polygon_soup_cgal(path, soup, error)) {
     const std::string reason = diagnose_rejected_text_mesh(path);
+    if (reason.empty() && obj) check_obj_face_indices(path, content);
     throw InputError(path + ": " + (reason.empty() ? "malformed mesh (" + error + ")" : reason));
   }
+  if (obj) check_obj_face_indices(path, content);
   const Tolerance tol = Tolerance::for_extent(soup_bounds(path, soup).diagonal());
   Scene scene;
   scene.name = "file:" + path;

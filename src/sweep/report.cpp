@@ -36,34 +36,65 @@ nlohmann::json summary(const nlohmann::json& suite, const nlohmann::json& shards
           {"complete", runs.size() + failures.size() == assigned && assigned == suite["jobs"].get<std::uint64_t>()}};
 }
 
+using JsonTest = bool (nlohmann::json::*)() const noexcept;
+
+// `o` is an object whose member `k` passes `test` (or, with `optional`, has no member `k`).
+bool has(const nlohmann::json& o, const char* k, JsonTest test, bool optional = false) {
+  if (!o.is_object()) return false;
+  const auto it = o.find(k);
+  return it == o.end() ? optional : ((*it).*test)();
+}
+
 bool is_record(const nlohmann::json& r, std::initializer_list<const char*> objects) {
-  if (!r.is_object() || !r.contains("key") || !r["key"].is_string()) return false;
+  if (!has(r, "key", &nlohmann::json::is_string)) return false;
   for (const char* k : objects)
-    if (!r.contains(k) || !r[k].is_object()) return false;
+    if (!has(r, k, &nlohmann::json::is_object)) return false;
   return true;
+}
+
+// The labels aggregation groups runs by and messages print (scene, heuristic, shape): strings,
+// and present unless `optional`.
+bool has_labels(const nlohmann::json& id, bool optional) {
+  for (const char* k : {"scene", "heuristic", "shape"})
+    if (!has(id, k, &nlohmann::json::is_string, optional)) return false;
+  return true;
+}
+
+// What aggregation, merging and the regression gate read from a run record.
+bool is_run(const nlohmann::json& r) {
+  if (!is_record(r, {"id", "metrics", "invariants", "timings"}) || !r.contains("validation")) return false;
+  const auto& id = r["id"];
+  const auto& validation = r["validation"];
+  return has(r, "calibration_seconds", &nlohmann::json::is_number) && r["calibration_seconds"].get<double>() > 0 &&
+         has(id, "n", &nlohmann::json::is_number_unsigned) && has(id, "n_polygons", &nlohmann::json::is_number) &&
+         has(id, "scene_params", &nlohmann::json::is_object) && has_labels(id, false) &&
+         has(r["invariants"], "violations", &nlohmann::json::is_number_unsigned, true) &&
+         (validation.is_null() || has(validation, "violations", &nlohmann::json::is_number_unsigned, true));
+}
+
+bool is_failure(const nlohmann::json& f) {
+  return is_record(f, {"id"}) && has_labels(f["id"], true) && has(f, "error", &nlohmann::json::is_string, true);
 }
 
 // The parts readers index into, so a damaged report is an InputError rather than a crash.
 void check_layout(const nlohmann::json& report, const std::string& path) {
   const auto bad = [&](const std::string& what) { throw InputError(path + ": " + what); };
   const auto& suite = report["suite"];
-  if (!suite.is_object() || !suite.contains("name") || !suite["name"].is_string() ||
-      !suite.contains("definition_hash") || !suite["definition_hash"].is_string() || !suite.contains("jobs") ||
-      !suite["jobs"].is_number_unsigned())
+  if (!has(suite, "name", &nlohmann::json::is_string) || !has(suite, "definition_hash", &nlohmann::json::is_string) ||
+      !has(suite, "jobs", &nlohmann::json::is_number_unsigned))
     bad("\"suite\" needs name, definition_hash and jobs");
   if (!report["shards"].is_array()) bad("\"shards\" is not an array");
   for (const auto& s : report["shards"])
-    if (!s.is_object() || !s.contains("index") || !s["index"].is_number_unsigned() || !s.contains("count") ||
-        !s["count"].is_number_unsigned() || !s.contains("jobs") || !s["jobs"].is_number_unsigned())
+    if (!has(s, "index", &nlohmann::json::is_number_unsigned) || !has(s, "count", &nlohmann::json::is_number_unsigned) ||
+        !has(s, "jobs", &nlohmann::json::is_number_unsigned))
       bad("a shard section lacks index, count or jobs");
   if (!report["runs"].is_array() || !report["failures"].is_array()) bad("\"runs\" and \"failures\" must be arrays");
   for (const auto& r : report["runs"])
-    if (!is_record(r, {"id", "metrics", "invariants", "timings"}) || !r.contains("calibration_seconds") ||
-        !r["calibration_seconds"].is_number() ||
-        !(r["calibration_seconds"].get<double>() > 0) || !r["id"].contains("n") || !r["id"]["n"].is_number_unsigned())
-      bad("a run record lacks key, id, metrics, invariants, timings or calibration_seconds");
+    if (!is_run(r))
+      bad("a run record lacks key, id (scene, heuristic, shape, n, n_polygons, scene_params), metrics, invariants, "
+          "validation, timings or calibration_seconds, or one has the wrong type");
   for (const auto& f : report["failures"])
-    if (!is_record(f, {"id"})) bad("a failure record lacks key or id");
+    if (!is_failure(f)) bad("a failure record lacks key or id, or one has the wrong type");
 }
 
 }  // namespace
@@ -86,7 +117,7 @@ nlohmann::json read_report(const std::string& path) {
   if (!in) throw InputError(path + ": cannot read the report");
   nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
   if (report.is_discarded()) throw InputError(path + ": not valid JSON");
-  if (!report.is_object() || report.value("schema", "") != kReportSchema)
+  if (!report.is_object() || !report.contains("schema") || report["schema"] != std::string(kReportSchema))
     throw InputError(path + ": not a bspbench report (no \"schema\": \"" + std::string(kReportSchema) + "\")");
   if (!report.contains("version") || !report["version"].is_number_integer() || report["version"] != kReportVersion)
     throw InputError(path + ": report version " + report["version"].dump() + ", this bspbench reads version " +

@@ -1,0 +1,144 @@
+// Inputs the libFuzzer targets (tests/fuzz) found crashing, kept here so the normal suite keeps
+// them fixed. Each must give an InputError (or be accepted), never another exception or a crash.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.h"
+#include "common/errors.h"
+#include "io/mesh_reader.h"
+#include "sweep/regress.h"
+#include "sweep/report.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class FuzzFindings : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = bsp::testing::fresh_test_dir("bspbench_fuzz_findings"); }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& content) const {
+    std::ofstream(dir_ / name, std::ios::binary) << content;
+    return (dir_ / name).string();
+  }
+
+  // read_mesh on `content` throws an InputError whose message contains `problem`.
+  void expect_mesh_error(const std::string& name, const std::string& content, const std::string& problem) const {
+    try {
+      bsp::read_mesh(write(name, content));
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const bsp::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
+    }
+  }
+
+  // The smallest report read_report accepts: one run with every field a reader uses.
+  static nlohmann::json minimal_report() {
+    const nlohmann::json run = {
+        {"key", "k1"},
+        {"id", {{"scene", "city"}, {"heuristic", "first"}, {"shape", "strict"}, {"n", 10}, {"n_polygons", 10},
+                {"scene_params", nlohmann::json::object()}}},
+        {"metrics", {{"nodes", 3}}},
+        {"invariants", {{"violations", 0}}},
+        {"validation", nullptr},
+        {"timings", {{"build_cpu_seconds", 0.5}}},
+        {"calibration_seconds", 0.1}};
+    return {{"schema", "bspbench-report"}, {"version", 1},
+            {"suite", {{"name", "s"}, {"definition_hash", "h"}, {"jobs", 1}}},
+            {"shards", {{{"index", 0}, {"count", 1}, {"jobs", 1}}}},
+            {"runs", {run}},
+            {"failures", nlohmann::json::array()}};
+  }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+// check_mesh_claims stepped past the end of a file whose last line is a comment without a newline
+// (std::out_of_range from string_view::substr).
+TEST_F(FuzzFindings, OffEndingInACommentWithoutNewline) {
+  EXPECT_THROW(bsp::read_mesh(write("comment.off", "OFF\n# c\n#")), bsp::InputError);
+  EXPECT_THROW(bsp::read_mesh(write("counts.off", "OFF\n3 1 0\n0 0 0\n#")), bsp::InputError);
+}
+
+// CGAL reads the OFF keyword as a run of letters and digits and the counts as ints, so
+// "OFF\b" and "0-1" were not the header this check saw, and CGAL cast the face size -1 to size_t.
+TEST_F(FuzzFindings, OffHeaderReadAsCgalReadsIt) {
+  expect_mesh_error("keyword.off", "OFF\b# c\n0 1 0-1 0 0\n", "face 0 claims -1 vertices");
+  expect_mesh_error("glued.off", "OFF\n0 1 0-1 0 1\n", "face 0 claims -1 vertices");
+}
+
+// CGAL's OFF scanner reads texture coordinates at an uninitialised index (a segfault even on a
+// well-formed STOFF file), indexes vertex and face lines for colours without bounds checks, keeps
+// reading colours once one line had one, casts colour channels to unsigned char and face indices
+// to size_t unchecked.
+TEST_F(FuzzFindings, OffTexturesColoursAndIndicesCgalCannotRead) {
+  expect_mesh_error("textures.off", "STOFF\n# c\n4 2 0\n0 0 0\n1 0 0\n1 1 5\n0 1 0\n4 0 1 2 3\n3 0 1 2 255 0 0\n",
+                    "texture coordinates (ST) is not supported");
+  const std::string rest = "1 0 0\n0 1 0\n3 0 1 2\n";
+  expect_mesh_error("two_channels.off", "COFF\n3 1 0\n0 0 0 1 2\n" + rest, "vertex 0 has a colour CGAL cannot read");
+  expect_mesh_error("channel_300.off", "COFF\n3 1 0\n0 0 0 300 0 0\n" + rest, "vertex 0 has a colour");
+  expect_mesh_error("map_index.off", "COFF\n3 1 0\n0 0 0 149\n" + rest, "vertex 0 has a colour");
+  expect_mesh_error("then_none.off", "COFF\n3 1 0\n0 0 0 255 0 0\n" + rest, "vertex 1 has a colour CGAL cannot read");
+  expect_mesh_error("face_colour.off", "COFF\n3 2 0\n0 0 0\n" + rest + "3 0 2 1 0.5 0.5\n", "face 1 has a colour");
+  expect_mesh_error("negative_index.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n",
+                    "face 0 refers to vertex -1 but the file has 3");
+  const std::string coloured = "COFF\n3 1 0\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 0.5 1\n3 0 1 2 7\n";
+  EXPECT_EQ(bsp::read_mesh(write("coloured.off", coloured)).polygons.size(), 1u);
+}
+
+// CGAL's PLY reader dereferences a null pointer when a vertex coordinate is not float or double.
+TEST_F(FuzzFindings, PlyVertexCoordinateOfAnIntegerTypeOrAList) {
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\n";
+  const std::string rest = "property float y\nproperty float z\nelement face 1\n"
+                           "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(bsp::read_mesh(write("float.ply", header + "property float x\n" + rest)).polygons.size(), 1u);
+  expect_mesh_error("int.ply", header + "property int32 x\n" + rest, "coordinate x is int32");
+  expect_mesh_error("list.ply", header + "property list uchar float x\n" + rest, "coordinate x is a list");
+}
+
+// CGAL takes the format from line 2 whatever its words, so "element" there is no element, and a
+// later property line indexed the last element of an empty list.
+TEST_F(FuzzFindings, PlyElementOnTheFormatLineIsNoElement) {
+  expect_mesh_error("format_line.ply", "ply\nformat ascii 1.0 element vertex 1\nformat x\nproperty float x\nend_header\n0\n",
+                    "a PLY property comes before any element");
+}
+
+TEST_F(FuzzFindings, MinimalReportIsAcceptedAndCompared) {
+  const auto path = write("ok.json", minimal_report().dump());
+  const nlohmann::json report = bsp::sweep::read_report(path);
+  EXPECT_FALSE(bsp::sweep::compare_reports(report, report, {}).failed());
+}
+
+// compare_reports indexed a run's missing "validation", and aggregation (behind merge-reports) its
+// missing id.scene, through a const json (undefined behaviour: AddressSanitizer saw a
+// heap-use-after-free); read_report now names every field readers use.
+TEST_F(FuzzFindings, RunWithoutAFieldTheReadersUseIsAnInputError) {
+  for (const auto& [section, key] : std::vector<std::pair<std::string, std::string>>{
+           {"", "validation"}, {"id", "n_polygons"}, {"id", "scene_params"}, {"id", "scene"}, {"id", "shape"},
+           {"", "calibration_seconds"}}) {
+    nlohmann::json r = minimal_report();
+    (section.empty() ? r["runs"][0] : r["runs"][0][section]).erase(key);
+    EXPECT_THROW(bsp::sweep::read_report(write("no_" + key + ".json", r.dump())), bsp::InputError) << key;
+  }
+}
+
+// Fields of the wrong type made nlohmann::json throw type_error out of read_report, merge and the gate.
+TEST_F(FuzzFindings, ReportFieldsOfTheWrongTypeAreAnInputError) {
+  nlohmann::json schema = minimal_report();
+  schema["schema"] = 5;
+  EXPECT_THROW(bsp::sweep::read_report(write("schema.json", schema.dump())), bsp::InputError);
+  nlohmann::json label = minimal_report();
+  label["runs"][0]["id"]["scene"] = 7;
+  EXPECT_THROW(bsp::sweep::read_report(write("label.json", label.dump())), bsp::InputError);
+  nlohmann::json violations = minimal_report();
+  violations["runs"][0]["invariants"]["violations"] = "none";
+  EXPECT_THROW(bsp::sweep::read_report(write("violations.json", violations.dump())), bsp::InputError);
+}
