@@ -49,7 +49,7 @@ class FuzzFindings : public ::testing::Test {
         {"validation", nullptr},
         {"timings", {{"build_cpu_seconds", 0.5}}},
         {"calibration_seconds", 0.1}};
-    return {{"schema", "bspbench-report"}, {"version", 1},
+    return {{"schema", "bspbench-report"}, {"version", bsp::sweep::kReportVersion},
             {"suite", {{"name", "s"}, {"definition_hash", "h"}, {"jobs", 1}}},
             {"shards", {{{"index", 0}, {"count", 1}, {"jobs", 1}}}},
             {"runs", {run}},
