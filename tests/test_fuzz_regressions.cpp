@@ -11,6 +11,7 @@
 #include "cli_runner.h"
 #include "common/errors.h"
 #include "io/mesh_reader.h"
+#include "io/polygon_cleanup.h"
 #include "sweep/regress.h"
 #include "sweep/report.h"
 
@@ -141,4 +142,30 @@ TEST_F(FuzzFindings, ReportFieldsOfTheWrongTypeAreAnInputError) {
   nlohmann::json violations = minimal_report();
   violations["runs"][0]["invariants"]["violations"] = "none";
   EXPECT_THROW(bsp::sweep::read_report(write("violations.json", violations.dump())), bsp::InputError);
+}
+
+// A face that turns straight back at one vertex (a spike) passed the convexity test, so a
+// self-overlapping hexagon reached split as one polygon and its parts held more area than it had.
+TEST_F(FuzzFindings, AFaceWithASpikeIsNotTakenAsConvex) {
+  bsp::Polygon spiked;
+  for (const bsp::Vec3& p : {bsp::Vec3{2, 2.25, 2.25}, bsp::Vec3{-4, -3, -3}, bsp::Vec3{2, -3.5, -3.5}, bsp::Vec3{0, 2, 2},
+                             bsp::Vec3{-3.5, 2, 2}, bsp::Vec3{2.5, 2, 2}})
+    spiked.verts.push_back({p, 0, 0});
+  const double eps = 1e-8;
+  EXPECT_FALSE(bsp::is_convex_planar(spiked, eps));
+  std::vector<bsp::Polygon> pieces;
+  bsp::SceneLoadStats stats;
+  bsp::append_clean_polygon(std::move(spiked), eps, pieces, stats);
+  for (const auto& piece : pieces) EXPECT_TRUE(bsp::is_convex_planar(piece, eps));
+}
+
+// A binary PLY whose last list holds exactly one byte more than the data has: the length check let
+// it through by one byte (meant for ASCII's missing last separator), and the next record's read
+// started past the end (std::out_of_range). The input is the fuzzer's, kept in the corpus.
+TEST_F(FuzzFindings, ABinaryPlyListOneBytePastTheEndIsAnInputError) {
+  std::ifstream in(std::string(BSPBENCH_SOURCE_DIR) + "/tests/fuzz/corpus/mesh_reader/crash-ply-binary-list-past-end",
+                   std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 1u);
+  EXPECT_THROW(bsp::read_mesh(write("list.ply", bytes.substr(1))), bsp::InputError);
 }

@@ -368,7 +368,9 @@ void check_ply_list(const std::string& path, const PlyElement& e, u64 record, co
   }
   const std::size_t left = data.size() - at;
   const auto need = times(k, format == PlyFormat::Ascii ? 2 : p.size);
-  if (negative || !need || *need > left + 1)
+  // The last ASCII entry needs no separator after it; binary entries have their exact size.
+  const std::size_t unseparated = format == PlyFormat::Ascii ? 1 : 0;
+  if (negative || !need || *need > left + unseparated)
     fail(path, e.name + " " + std::to_string(record) + " has a list of " +
                    (negative ? "negative length" : std::to_string(k) + " entries") + " but only " + bytes(left) +
                    " remain");

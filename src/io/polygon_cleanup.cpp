@@ -135,8 +135,14 @@ bool is_convex_planar(const Polygon& poly, double eps) {
     if (std::abs(plane->distance(x.p)) > eps) return false;
   const auto q = project(poly);
   const std::size_t k = q.size();
-  for (std::size_t i = 0; i < k; ++i)
-    if (orient(q[i], q[(i + 1) % k], q[(i + 2) % k]) < -eps * distance(q[i], q[(i + 1) % k])) return false;
+  for (std::size_t i = 0; i < k; ++i) {
+    const Point2 &a = q[i], &b = q[(i + 1) % k], &c = q[(i + 2) % k];
+    const double turn = orient(a, b, c);
+    if (turn < -eps * distance(a, b)) return false;
+    // A straight turn back (a spike) passes the orientation test but folds the boundary over itself.
+    const bool reverses = (b.x - a.x) * (c.x - b.x) + (b.y - a.y) * (c.y - b.y) < 0;
+    if (turn <= eps * distance(a, c) && reverses) return false;
+  }
   return winds_once(q, eps);
 }
 

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer target over its committed corpus: tests/fuzz/run.sh TARGET SECONDS [RUNS].
+# BSPBENCH_FUZZ_SEED fixes libFuzzer's random seed (default 0: a new one each run); with a RUNS
+# count too, a run is repeatable, which is how CI runs it.
 # TARGET is mesh_reader, polygon_split, tree_build or report; the binaries come from the `fuzz`
 # preset (cmake --preset fuzz && cmake --build --preset fuzz). New inputs that reach new coverage
 # go to build-fuzz/corpus/TARGET, not into the committed corpus; a crash leaves its input in
@@ -17,5 +19,5 @@ mkdir -p "$work" "$repo/build-fuzz/artifacts"
 # caught long before the machine runs out of memory. -max_len: the seeds are under 3 KB; longer
 # inputs only slow the search down.
 exec "$binary" "$work" "$repo/tests/fuzz/corpus/$target" -max_total_time="$seconds" -runs="$runs" \
-  -max_len=4096 -rss_limit_mb=1024 -malloc_limit_mb=512 -timeout=10 -print_final_stats=1 \
+  -seed="${BSPBENCH_FUZZ_SEED:-0}" -max_len=4096 -rss_limit_mb=1024 -malloc_limit_mb=512 -timeout=10 -print_final_stats=1 \
   -artifact_prefix="$repo/build-fuzz/artifacts/$target-"
