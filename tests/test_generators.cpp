@@ -368,6 +368,11 @@ TEST_P(EveryScene, PassesOrderValidationWithFirstAndRandom) {
     EXPECT_TRUE(r.ok()) << heuristic << ": " << r.violations << " violations, first "
                         << (r.first_problems.empty() ? "" : r.first_problems.front());
     EXPECT_GT(r.pairs_checked, 0u) << heuristic;
+    // Ties come from geometry the tolerance cannot order, not from the scene's size: rare except
+    // where a scene is made of them (overlapping coplanar polygons, features a few plane_eps wide).
+    if (GetParam() != "coplanar-heavy" && GetParam() != "near-degenerate") {
+      EXPECT_LE(r.ties(), r.hit_pairs / 100) << heuristic << ": " << r.ties() << " ties of " << r.hit_pairs;
+    }
   }
 }
 
