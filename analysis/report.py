@@ -29,7 +29,7 @@ import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first
 
 SCHEMA = "bspbench-report"
 VERSION = 2
-# The three axes of the Pareto view, all "lower is better" (issue 5: fragments vs depth vs E_line).
+# The three axes of the Pareto view, all "lower is better": fragments vs depth vs E_line.
 PARETO_AXES = ("fragments", "max_depth", "e_line")
 SCALING_AXES = (("timings", "build_cpu_seconds", "build CPU time (s)"), ("metrics", "fragments", "fragments"))
 DPI = 100

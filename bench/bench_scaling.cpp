@@ -1,4 +1,4 @@
-// bspbench_bench_scaling (issue 2, item 10): build and full traversal on random-triangles at
+// bspbench_bench_scaling: build and full traversal on random-triangles at
 // N = 10^3, 10^4, 10^5, tree metrics as counters:
 //   scaling/build/n:N/HEURISTIC     items = input triangles
 //   scaling/traverse/n:N/HEURISTIC  back-to-front from the 8 metric views; items = fragments emitted

@@ -1,4 +1,4 @@
-// The real bspbench binary on bad input (issue 2, item 11): every bad file gives exit code 2, one
+// The real bspbench binary on bad input: every bad file gives exit code 2, one
 // line on stderr naming the file and the problem, and no output files; every bad command line gives
 // exit code 2 and the usage line.
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 #pragma once
 // Oriented planes: points p with dot(n, p) + d = 0, n of unit length. The front (positive)
-// half-space is where dot(n, p) + d > 0 (seed 000 §1).
+// half-space is where dot(n, p) + d > 0 [Chrysanthou §1].
 #include <cstdint>
 #include <unordered_map>
 #include <vector>

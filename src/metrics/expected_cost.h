@@ -1,6 +1,6 @@
 #pragma once
 // Naylor's expected costs of a tree ("Constructing good partitioning trees", Graphics Interface
-// 1993; seed 000 §7), computed exactly from the cells of the tree.
+// 1993 [Naylor1993]), computed exactly from the cells of the tree.
 //
 // Cells. The root cell R is the box tree.bounds.enlarged(margin) (vec3.h: grown by margin times the
 // box diagonal on every side), so cells touching the scene's extremes keep a volume. A node's cell

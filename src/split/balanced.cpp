@@ -1,4 +1,4 @@
-// `balanced`: seed 003's "most balanced face": the candidate plane that leaves the same number of
+// `balanced`: the "most balanced face" of [AlphaBSP]: the candidate plane that leaves the same number of
 // fragments on both sides, fewer splits breaking ties, then the earlier fragment. Counts are whole
 // fragments; a spanning one lands on both sides and so does not change |front − back|. Seed 003
 // scores every face (candidates = 0); sampling is there for inputs too large for O(m²) per node.
@@ -35,8 +35,8 @@ class BalancedSplitter final : public Splitter {
 
 HeuristicInfo balanced_heuristic() {
   return {"balanced",
-          "most balanced plane: min |front-back|, ties by fewer splits (seed 003)",
-          {candidates_param(0, "; seed 003 scores all")},
+          "most balanced plane: min |front-back|, ties by fewer splits",
+          {candidates_param(0, "; the most-balanced-face method scores all")},
           true,
           [](const ParamSet& p, std::uint64_t seed) {
             return std::make_unique<BalancedSplitter>(static_cast<std::uint64_t>(p.integer("candidates")),

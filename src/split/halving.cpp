@@ -1,6 +1,6 @@
-// `halving`: Torres' halving planes (seed 000 §8: "planes chosen to be parallel to as many object
-// polygons as possible to minimise splits and positioned so as to have an almost equal number of
-// the polygons on each side"). A free plane, through no polygon:
+// `halving`: Torres' halving planes ([Torres1990]; [Chrysanthou §8]: "planes chosen to be parallel
+// to as many object polygons as possible to minimise splits and positioned so as to have an almost
+// equal number of the polygons on each side"). A free plane, through no polygon:
 //  1. orientation: the node's fragments' planes grouped by normal direction, both facings alike,
 //     within `angle_tolerance` (parallel_groups.h); the most populated group wins, the earliest
 //     on ties, and its first normal is the plane's normal u;
@@ -151,7 +151,7 @@ std::vector<std::string> fallback_names() {
 HeuristicInfo halving_heuristic() {
   return {"halving",
           "Torres' halving planes: free plane parallel to the most polygons, in the widest gap near the median "
-          "(seed 000 s8)",
+          "(Torres 1990)",
           {{"angle_tolerance", ParamSpec::Kind::Real,
             "degrees within which two polygon planes (either facing) count as parallel", 0.01, 1e-9, 10.0, {}},
            {"balance_slack", ParamSpec::Kind::Real,

@@ -1,4 +1,4 @@
-// `min-relation`: seed 004's CHOOSE-DIVIDING-POLYGON. Among the candidates, the fewest spanning
+// `min-relation`: CHOOSE-DIVIDING-POLYGON of [DividingPolygon]. Among the candidates, the fewest spanning
 // fragments subject to relation = min(front, back) / max(front, back) > MinRelation, ties going to
 // the better relation, then to the earlier fragment; when no candidate qualifies, MinRelation is
 // divided by MINRELATIONSCALE and the search repeats. Every fragment of a node is "unused" in the
@@ -27,8 +27,8 @@ namespace {
 constexpr double kRelationOfEmptySides = 1.0;
 
 struct MinRelationSettings {
-  double min_relation;  // seed 004 MINIMUMRELATION
-  double scale;         // seed 004 MINRELATIONSCALE
+  double min_relation;  // MINIMUMRELATION [DividingPolygon]
+  double scale;         // MINRELATIONSCALE [DividingPolygon]
   std::uint64_t candidates;
 
   static MinRelationSettings from(const ParamSet& p) {
@@ -61,7 +61,7 @@ class MinRelationSplitter final : public Splitter {
   }
 
  private:
-  // The first MinRelation / scale^i that some candidate's relation exceeds (seed 004 lines 19-57),
+  // The first MinRelation / scale^i that some candidate's relation exceeds ([DividingPolygon]),
   // or -1 when every relation is 0.
   double threshold(const std::vector<Scored>& scored) const {
     double best = 0;
@@ -92,15 +92,15 @@ class MinRelationSplitter final : public Splitter {
 HeuristicInfo min_relation_heuristic() {
   return {"min-relation",
           "fewest splits subject to min(front,back)/max(front,back) > min_relation, relaxed by "
-          "min_relation_scale until one qualifies (seed 004)",
+          "min_relation_scale until one qualifies (dividing-polygon method)",
           {{"min_relation", ParamSpec::Kind::Real,
-            "seed 004 MINIMUMRELATION: the balance min(front,back)/max(front,back) a candidate must exceed first",
+            "MINIMUMRELATION: the balance min(front,back)/max(front,back) a candidate must exceed first",
             0.8, 0.0, 1.0, {}},
            {"min_relation_scale", ParamSpec::Kind::Real,
-            "seed 004 MINRELATIONSCALE: divides the threshold after a round with no qualifying candidate (>= 2 "
+            "MINRELATIONSCALE: divides the threshold after a round with no qualifying candidate (>= 2 "
             "keeps the rounds O(log m))",
             2.0, 2.0, 1e6, {}},
-           candidates_param(0, "; seed 004 scores all")},
+           candidates_param(0, "; the dividing-polygon method scores all")},
           true,
           [](const ParamSet& p, std::uint64_t seed) {
             return std::make_unique<MinRelationSplitter>(MinRelationSettings::from(p), stream_seed(seed, 0x4e1a));

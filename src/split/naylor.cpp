@@ -1,5 +1,5 @@
 // `naylor`: greedy minimisation of Naylor's expected cost ("Constructing good partitioning trees",
-// Graphics Interface 1993; seed 000 §7): C(T) = 1 + P(T⁻)·C(T⁻) + P(T⁺)·C(T⁺), where P(child) is
+// Graphics Interface 1993 [Naylor1993]): C(T) = 1 + P(T⁻)·C(T⁻) + P(T⁺)·C(T⁺), where P(child) is
 // the chance that a query reaching the node goes on into that child. For point location (model =
 // volume) it is the child cell's share of the parent cell's volume; for random lines or rays
 // (model = area) it is the ratio of the child cell's surface area to the parent's, by Crofton's

@@ -1,4 +1,4 @@
-// `weighted`: the weighted sum of splits and imbalance over sampled candidates (seed 000 §7: "select
+// `weighted`: the weighted sum of splits and imbalance over sampled candidates ([Chrysanthou §7]: "select
 // a few candidate polygons at each iteration and find the best of these ... the weighted sum of two
 // quantities, size (number of resulting splits) and distribution (difference in the number of
 // polygons in each of the resulting subsets)"), plus the coplanar and axial terms the Quake tools
@@ -72,7 +72,7 @@ HeuristicInfo weighted_family(std::string name, std::string summary, const Weigh
 HeuristicInfo weighted_heuristic() {
   return weighted_family("weighted",
                          "min split_weight*splits + balance_weight*|front-back| - coplanar/axial bonuses over "
-                         "sampled candidates (seed 000 s7)",
+                         "sampled candidates (Chrysanthou's BSP tutorial)",
                          WeightedSettings{}, 0x3e16);
 }
 

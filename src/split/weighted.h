@@ -1,5 +1,5 @@
 #pragma once
-// The weighted split/balance family (seed 000 §7): score k candidate planes sampled from the node's
+// The weighted split/balance family [Chrysanthou §7]: score k candidate planes sampled from the node's
 // fragments by a weighted sum and take the cheapest. `weighted` exposes the weights; the presets
 // `quake` and `crystal` (quake.cpp, crystal.cpp) are the same scorer with the constants of the
 // production tools they are named after, so each preset's constants live with their source.

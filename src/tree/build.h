@@ -1,5 +1,5 @@
 #pragma once
-// Building a tree from polygons. The recursive build (seed 000 §2) runs on an explicit work stack,
+// Building a tree from polygons. The recursive build [Fuchs1980] runs on an explicit work stack,
 // so a degenerate input that makes a chain as deep as the input is long cannot overflow the call
 // stack. The result is frozen: nodes in pre-order (front child first), fragments grouped by node.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Incremental construction (seed 000 §2, Thibault and Naylor): polygons are inserted one at a time,
+// Incremental construction (Thibault and Naylor [Thibault1987]): polygons are inserted one at a time,
 // split on their way down, and each one that reaches an empty cell makes a node with its plane.
 //
 // Coarse shape: a polygon reaching a coarse leaf joins it while the leaf stays a convex set;

@@ -49,7 +49,7 @@ class FragmentStore {
   std::vector<BoundingSphere> sphere_;
 };
 
-// seed 004 IS-CONVEX-SET: every fragment lies in front of or on every other fragment's plane.
+// IS-CONVEX-SET [DividingPolygon]: every fragment lies in front of or on every other fragment's plane.
 // O(k^2) plane tests in the worst case, with an early exit on the first failure.
 bool is_convex_set(std::span<const std::uint32_t> ids, const FragmentStore& frags,
                    const PlanePool& planes, double eps);

@@ -1,5 +1,5 @@
 #pragma once
-// Visibility orders from an eye point (seed 000 Figure 3): at each node, the subtree on the far
+// Visibility orders from an eye point [Fuchs1980]: at each node, the subtree on the far
 // side of the plane first, then the node's own fragments, then the near side. Runs on an explicit
 // stack, so it handles trees as deep as the input is long.
 //

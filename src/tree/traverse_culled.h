@@ -1,5 +1,5 @@
 #pragma once
-// Back-to-front traversal culled by a view frustum (seed 003 "Traversing BSP Tree"; seed 000 §5
+// Back-to-front traversal culled by a view frustum ([AlphaBSP] "Traversing BSP Tree"; [Chrysanthou §5]
 // does the same by merging with the view volume's tree). The frustum is convex, the convex hull of
 // its eight corners, so when every corner lies strictly on one side of a node's plane the other
 // subtree and the fragments stored on the plane lie wholly outside it and are skipped. Otherwise

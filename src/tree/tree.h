@@ -2,11 +2,11 @@
 // A frozen BSP tree: nodes in one flat array linked by indices, planes in a pool, fragments grouped
 // by the node that stores them. Built in scratch memory by build.h, never modified afterwards.
 //
-// Shapes (seed 003, figures 1.1 and 1.2):
+// Shapes ([AlphaBSP]):
 //  - Strict: every node has a partitioning plane and stores the fragments coplanar with it
-//    (seed 000 §2). Empty cells are not stored: a missing child is kNull.
+//    [Fuchs1980]. Empty cells are not stored: a missing child is kNull.
 //  - Coarse: additionally, a leaf may hold several fragments once they form a convex set (each in
-//    front of or on every other's plane; seed 004 IS-CONVEX-SET). Such a leaf has plane kNull.
+//    front of or on every other's plane; IS-CONVEX-SET of [DividingPolygon]). Such a leaf has plane kNull.
 //
 // Depth convention: the root has depth 1, so a tree of n nodes has max depth >= ceil(log2(n+1)).
 #include <cstdint>

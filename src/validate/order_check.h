@@ -1,5 +1,5 @@
 #pragma once
-// Checking back-to-front visibility orders against Embree (issue 2, items 7 and 8).
+// Checking back-to-front visibility orders against Embree [Wald2014].
 //
 // The rule: along any ray from the eye, a fragment hit nearer must be drawn after every fragment
 // hit farther away. For each ray, every pair of hits that is not a tie (embree_scene.h: coplanar,
