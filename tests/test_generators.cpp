@@ -373,6 +373,10 @@ TEST_P(EveryScene, PassesOrderValidationWithFirstAndRandom) {
     if (GetParam() != "coplanar-heavy" && GetParam() != "near-degenerate") {
       EXPECT_LE(r.ties(), r.hit_pairs / 100) << heuristic << ": " << r.ties() << " ties of " << r.hit_pairs;
     }
+    // near-degenerate's ties are its stacked quads a fraction of plane_eps apart (coplanar) and the
+    // strips a few plane_eps wide that near-coincident cuts leave (edge); a ray passing a fragment
+    // within the boundary slack leaves the pair open only where the other fragment ends there too.
+    EXPECT_LE(r.ties_boundary, r.hit_pairs / 1000) << heuristic << ": " << r.ties_boundary << " of " << r.hit_pairs;
   }
 }
 

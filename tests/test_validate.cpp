@@ -187,6 +187,31 @@ TEST(EmbreeScene, OverlappingCoplanarFragmentsTie) {
   }
 }
 
+// a: the unit square on z = 1; b: a square on z = 0 under a's edge x = 1. A ray from above passes
+// a's edge outside a by half a plane_eps (a boundary tie for ray shooting: whether it meets a is
+// open) and meets b. Where b lies far inside under that edge, a ray turned by a hair meets both, so
+// drawing a before b is judged and caught; where b ends right under the edge, the pair ties.
+TEST(EmbreeScene, ANearMissOverAFragmentThatSurelyOverlapsIsJudged) {
+  for (const double b_x0 : {0.5, 1.0 - 1e-12}) {
+    const std::vector<Polygon> polys = {square(1, 0, 0), square(0, b_x0, 1)};
+    const EmbreeScene scene(polys);
+    const double eps = scene.plane_eps();
+    const Ray ray{{1 + 0.5 * eps, 0.5, 3}, {0, 0, -1}};
+    const auto hits = scene.all_hits(ray);
+    ASSERT_EQ(hits.size(), 2u) << b_x0;
+    EXPECT_LT(hits[0].inside, 0.0);
+    EXPECT_EQ(scene.tie_reason(ray, hits[0], hits[1]), TieReason::Boundary);
+    const bool deep = b_x0 == 0.5;
+    EXPECT_EQ(scene.overlap_nearby(hits[0], hits[1]), deep) << b_x0;
+    const std::vector<Ray> rays = {ray};
+    const std::vector<std::uint32_t> near_first = {0, 1}, far_first = {1, 0};
+    EXPECT_EQ(check_order(scene, rays, far_first).violations, 0u);
+    const OrderCheck wrong = check_order(scene, rays, near_first);
+    EXPECT_EQ(wrong.violations, deep ? 1u : 0u) << b_x0;
+    EXPECT_EQ(wrong.ties_boundary, deep ? 0u : 1u) << b_x0;
+  }
+}
+
 TEST(EmbreeScene, CheckOrderRejectsAnOrderThatIsNotAPermutation) {
   const std::vector<Polygon> polys = {square(1, 0, 0), square(0, 0, 1)};
   const EmbreeScene scene(polys);

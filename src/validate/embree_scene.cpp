@@ -352,6 +352,17 @@ TieReason EmbreeScene::tie_reason(const Ray& ray, const Hit& a, const Hit& b) co
   return TieReason::None;
 }
 
+bool EmbreeScene::overlap_nearby(const Hit& a, const Hit& b) const {
+  if ((a.inside < 0.0) == (b.inside < 0.0)) return false;
+  const Hit& out = a.inside < 0.0 ? a : b;
+  const Hit& other = a.inside < 0.0 ? b : a;
+  if (!(out.t > 0.0)) return false;
+  const double grazing = (other.radius - impl_->inside_slack) / impl_->eps;
+  if (grazing >= kMaxGrazingScale) return false;  // the sine is only bounded there, not known
+  const double moved = -out.inside * (other.t / out.t) * grazing;
+  return other.inside > moved + impl_->inside_slack;
+}
+
 double EmbreeScene::plane_eps() const { return impl_->eps; }
 std::size_t EmbreeScene::fragment_count() const { return impl_->first.size() - 1; }
 

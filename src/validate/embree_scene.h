@@ -34,7 +34,10 @@
 //    (two fragments within plane_eps of one node's plane, so up to 2 plane_eps apart);
 //  - boundary: otherwise, when one hit lies outside its fragment by less than the boundary slack
 //    (kInsideEps × plane_eps): whether the ray meets that fragment at all is below what the
-//    fragments' own planarity lets the double-precision test decide.
+//    fragments' own planarity lets the double-precision test decide. That leaves open which
+//    fragment this ray meets first (ray shooting), but not always the pair's order: when a ray
+//    turned about its origin just far enough to meet the outside hit's fragment still meets the
+//    other fragment inside (overlap_nearby), the two overlap on screen and the order is a fact.
 // The hit radius of a hit is how far its computed point can be from where the ray truly meets the
 // fragment: the boundary slack of the double-precision test plus plane_eps (the fragment's own
 // planarity) divided by the sine of the angle between the ray and the fragment's plane, that
@@ -102,6 +105,13 @@ class EmbreeScene {
   std::optional<Hit> hit(const Ray& ray, std::uint32_t fragment) const;
   // Why two hits of one ray cannot be ordered (header), or None when they can.
   TieReason tie_reason(const Ray& ray, const Hit& a, const Hit& b) const;
+  // For a boundary tie: whether the ray, turned about its origin until it meets the outside hit's
+  // fragment, certainly still meets the other one. Turning it by the outside distance d at the
+  // outside hit's depth t_o moves the other hit by at most d * (t_other / t_o) / sin(other's
+  // grazing angle, capped as in the hit radius); the other hit must lie farther than that plus
+  // the boundary slack inside its fragment. Then both fragments cover one point of the screen,
+  // and their order along the turned ray is the order along this one.
+  bool overlap_nearby(const Hit& a, const Hit& b) const;
 
   double plane_eps() const;
   std::size_t fragment_count() const;

@@ -97,7 +97,9 @@ void check_ray(const EmbreeScene& scene, const Ray& ray, const std::vector<std::
   tally.hit_pairs += hits.size() * (hits.size() - (hits.empty() ? 0 : 1)) / 2;
   for (std::size_t i = 0; i < hits.size(); ++i)
     for (std::size_t j = i + 1; j < hits.size(); ++j) {
-      if (count_tie(scene.tie_reason(ray, hits[i], hits[j]), tally)) continue;
+      TieReason reason = scene.tie_reason(ray, hits[i], hits[j]);
+      if (reason == TieReason::Boundary && scene.overlap_nearby(hits[i], hits[j])) reason = TieReason::None;
+      if (count_tie(reason, tally)) continue;
       const std::uint32_t nearer = hits[i].fragment, farther = hits[j].fragment;
       tally.checked.push_back(unordered_key(nearer, farther));
       if (pos[nearer] < pos[farther]) tally.violating.push_back(ordered_key(nearer, farther));

@@ -3,8 +3,9 @@
 //
 // The rule: along any ray from the eye, a fragment hit nearer must be drawn after every fragment
 // hit farther away. For each ray, every pair of hits that is not a tie (embree_scene.h: coplanar,
-// or meeting where the two fragments touch) is checked; a pair drawn in the wrong order is a
-// violation. Pairs are counted as distinct unordered fragment pairs, so one wrongly ordered pair
+// meeting where the two fragments touch, or one passed within the boundary slack, unless a ray
+// turned just enough to meet it still meets the other: overlap_nearby) is checked; a pair drawn
+// in the wrong order is a violation. Pairs are counted as distinct unordered fragment pairs, so one wrongly ordered pair
 // seen by many rays counts once per view; hit pairs and ties are counted per ray.
 //
 // Deterministic: rays are cast in parallel (rtcIntersect1 on a committed scene is thread-safe),
