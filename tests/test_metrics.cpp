@@ -17,7 +17,7 @@
 #include "common/rng.h"
 #include "metrics/expected_cost.h"
 #include "metrics/ray_cost.h"
-#include "metrics/ray_shoot.h"
+#include "tree/ray_shoot.h"
 #include "metrics/statistics.h"
 #include "metrics/traversal_cost.h"
 #include "metrics/tree_metrics.h"
@@ -180,17 +180,17 @@ double monte_carlo_e_line(const Tree& tree, const Box& root, int samples) {
 
 // --- ray shooting references
 
-std::optional<Hit> brute_force_first_hit(const Tree& tree, const Ray& ray) {
-  std::optional<Hit> best;
+std::optional<RayHit> brute_force_first_hit(const Tree& tree, const Ray& ray) {
+  std::optional<RayHit> best;
   for (std::uint32_t i = 0; i < tree.fragments.size(); ++i) {
     const auto t = ray_polygon_hit(ray, tree.fragments[i], tree.planes[tree.fragment_plane[i]]);
-    if (t && (!best || *t < best->t)) best = Hit{*t, i};
+    if (t && (!best || *t < best->t)) best = RayHit{*t, i};
   }
   return best;
 }
 
 // Same answer: both miss, or the same fragment, or hits at the same distance (a tie).
-bool same_first_hit(const std::optional<Hit>& a, const std::optional<Hit>& b, const Ray& ray, double tie) {
+bool same_first_hit(const std::optional<RayHit>& a, const std::optional<RayHit>& b, const Ray& ray, double tie) {
   if (!a || !b) return !a && !b;
   return a->fragment == b->fragment || std::abs(a->t - b->t) * length(ray.dir) <= tie;
 }

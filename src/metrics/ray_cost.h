@@ -1,10 +1,10 @@
 #pragma once
-// Ray-shooting cost: the work of metrics/ray_shoot.h over a seeded set of rays.
+// Ray-shooting cost: the work of tree/ray_shoot.h over a seeded set of rays.
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "metrics/ray_shoot.h"
+#include "tree/ray_shoot.h"
 
 namespace bsp {
 

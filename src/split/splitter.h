@@ -8,7 +8,7 @@
 
 #include "geometry/plane.h"
 #include "geometry/tolerance.h"
-#include "tree/fragment_store.h"
+#include "split/fragment_store.h"
 
 namespace bsp {
 

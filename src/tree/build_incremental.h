@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "tree/build.h"
-#include "tree/fragment_store.h"
+#include "split/fragment_store.h"
 
 namespace bsp {
 

@@ -4,7 +4,7 @@
 #include <span>
 #include <vector>
 
-#include "tree/fragment_store.h"
+#include "split/fragment_store.h"
 #include "tree/tree.h"
 
 namespace bsp {

@@ -254,7 +254,7 @@ std::optional<Hit> EmbreeScene::Impl::exact_hit(const Ray& ray, std::uint32_t f)
   const double inside = inside_distance(f, ray.origin + ray.dir * t);
   if (inside < -inside_slack) return std::nullopt;
   const double grazing = std::min(length(ray.dir) / std::abs(denom), kMaxGrazingScale);
-  return Hit{t, f, inside_slack + eps * grazing, inside};
+  return Hit{{t, f}, inside_slack + eps * grazing, inside};
 }
 
 // Whether, where the ray meets them, the two hits lie within 2 eps of each other across one of the

@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "geometry/polygon.h"
+#include "geometry/ray.h"
 #include "geometry/vec3.h"
 
 namespace bsp {
@@ -66,16 +67,10 @@ inline constexpr double kMaxGrazingScale = 1e3;
 // cannot lose a candidate the double test would accept there.
 inline constexpr double kGrowRelative = 1e-4;
 
-// A ray from origin along dir (any nonzero length); points are origin + t * dir.
-struct Ray {
-  Vec3 origin, dir;
-};
-
-struct Hit {
-  double t;                 // ray parameter of the hit, t >= 0
-  std::uint32_t fragment;   // index into the fragments the scene was built from
-  double radius = 0.0;      // the hit radius (header), world units
-  double inside = 0.0;      // distance of the hit point from the fragment's boundary, < 0 outside
+// A hit as the checker decides it, with what it needs to judge ties.
+struct Hit : RayHit {
+  double radius = 0.0;  // the hit radius (header), world units
+  double inside = 0.0;  // distance of the hit point from the fragment's boundary, < 0 outside
 };
 
 enum class TieReason : std::uint8_t { None, Coplanar, Edge, Boundary };

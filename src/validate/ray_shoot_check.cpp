@@ -4,21 +4,22 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "metrics/ray_shoot.h"
+#include "tree/ray_shoot.h"
 
 namespace bsp {
 
 namespace {
 
-std::string describe(const std::optional<Hit>& h) {
+template <class H>
+std::string describe(const std::optional<H>& h) {
   return h ? "fragment " + std::to_string(h->fragment) + " at t=" + std::to_string(h->t) : "no hit";
 }
 
 }  // namespace
 
-HitVerdict judge_first_hits(const std::optional<Hit>& bsp, const std::optional<Hit>& embree, const Ray& ray,
+HitVerdict judge_first_hits(const std::optional<RayHit>& bsp, const std::optional<Hit>& embree, const Ray& ray,
                             const EmbreeScene& scene) {
-  const auto same = [](const std::optional<Hit>& a, const std::optional<Hit>& b) {
+  const auto same = [](const std::optional<RayHit>& a, const std::optional<Hit>& b) {
     return a.has_value() == b.has_value() && (!a || a->fragment == b->fragment);
   };
   if (same(bsp, embree)) return HitVerdict::Agree;
@@ -40,7 +41,7 @@ RayShootCheck check_ray_shooting(const Tree& tree, const EmbreeScene& embree, st
   RayShootCheck out;
   for (const Ray& ray : rays) {
     const std::optional<Hit> expected = embree.first_hit(ray);
-    const std::optional<Hit> got = shoot_ray(tree, ray).hit;
+    const std::optional<RayHit> got = shoot_ray(tree, ray).hit;
     ++out.rays;
     out.hits += expected.has_value();
     const HitVerdict verdict = judge_first_hits(got, expected, ray, embree);

@@ -1,5 +1,5 @@
 #pragma once
-// Checking the tree's ray shooting (metrics/ray_shoot.h) against Embree's first hit, ray by ray:
+// Checking the tree's ray shooting (tree/ray_shoot.h) against Embree's first hit, ray by ray:
 // a second correctness check of a tree, independent of the visibility-order check.
 //
 // Verdict per ray: agree when the walk and Embree both miss or name the same fragment. Otherwise
@@ -27,7 +27,7 @@ namespace bsp {
 enum class HitVerdict : std::uint8_t { Agree, AgreeExhaustive, TieCoplanar, TieEdge, TieBoundary, Mismatch };
 
 // `scene` holds the fragments both hits index; `embree` is its first hit on the ray.
-HitVerdict judge_first_hits(const std::optional<Hit>& bsp, const std::optional<Hit>& embree, const Ray& ray,
+HitVerdict judge_first_hits(const std::optional<RayHit>& bsp, const std::optional<Hit>& embree, const Ray& ray,
                             const EmbreeScene& scene);
 
 struct RayShootCheck {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "tree/fragment_store.h"
+#include "split/fragment_store.h"
 
 namespace bsp {
 

@@ -10,13 +10,13 @@
 // only. Coarse leaves test all their fragments. Segments starting at or beyond the nearest hit
 // found so far are skipped: nothing they hold can be nearer. No recursion.
 //
-// Ray and Hit are those of the Embree checker (validate/embree_scene.h), whose first_hit must give
+// The Embree checker (validate/embree_scene.h) takes the same rays, and its first hit must give
 // the same answer on every ray (ties aside): an independent check of the tree.
 #include <cstdint>
 #include <optional>
 
+#include "geometry/ray.h"
 #include "tree/tree.h"
-#include "validate/embree_scene.h"
 
 namespace bsp {
 
@@ -31,7 +31,7 @@ namespace bsp {
 std::optional<double> ray_polygon_hit(const Ray& ray, const Polygon& poly, const Plane& support);
 
 struct RayShot {
-  std::optional<Hit> hit;            // the nearest fragment hit at t > 0
+  std::optional<RayHit> hit;         // the nearest fragment hit at t > 0
   std::uint32_t nodes_visited = 0;   // nodes whose segment the walk processed
   std::uint32_t fragment_tests = 0;  // ray_polygon_hit calls
 };

@@ -1,4 +1,4 @@
-#include "tree/fragment_store.h"
+#include "split/fragment_store.h"
 
 namespace bsp {
 

@@ -1,4 +1,4 @@
-#include "metrics/ray_shoot.h"
+#include "tree/ray_shoot.h"
 
 #include <algorithm>
 #include <cmath>
@@ -95,7 +95,7 @@ class Walker {
     for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
       ++shot_.fragment_tests;
       const auto t = ray_polygon_hit(ray_, tree_.fragments[i], tree_.planes[tree_.fragment_plane[i]]);
-      if (t && (!shot_.hit || *t < shot_.hit->t)) shot_.hit = Hit{*t, i};
+      if (t && (!shot_.hit || *t < shot_.hit->t)) shot_.hit = RayHit{*t, i};
     }
   }
 
