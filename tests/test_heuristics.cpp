@@ -384,10 +384,21 @@ INSTANTIATE_TEST_SUITE_P(Registry, RegisteredHeuristic, ::testing::ValuesIn(heur
 
 TEST(SampledHeuristics, TheSeedChoosesTheSampleAndOnlyThen) {
   const Scene scene = make_scene("random-triangles", {{"n", "300"}, {"seed", "9"}});
-  for (const char* h : {"crystal", "naylor"})
+  for (const char* h : {"crystal", "naylor", "weighted", "quake", "balanced", "min-relation"})
     EXPECT_FALSE(identical(build(scene.polygons, h, {}, Shape::Strict, 1), build(scene.polygons, h, {}, Shape::Strict, 2)))
         << h;
-  // Scoring every candidate (candidates = 0) leaves nothing to chance.
-  EXPECT_TRUE(identical(build(scene.polygons, "weighted", {}, Shape::Strict, 1),
-                        build(scene.polygons, "weighted", {}, Shape::Strict, 2)));
+  // Scoring every candidate against every fragment (candidates = 0, sample = 0) leaves nothing to chance.
+  const ParamAssignments exhaustive = {{"candidates", "0"}};
+  for (const char* h : {"weighted", "quake", "balanced", "min-relation"})
+    EXPECT_TRUE(identical(build(scene.polygons, h, exhaustive, Shape::Strict, 1),
+                          build(scene.polygons, h, exhaustive, Shape::Strict, 2)))
+        << h;
+  // A counted sample is drawn from the seed too, even when every candidate is scored.
+  const ParamAssignments sampled_counts = {{"candidates", "0"}, {"sample", "20"}};
+  EXPECT_FALSE(identical(build(scene.polygons, "weighted", sampled_counts, Shape::Strict, 1),
+                         build(scene.polygons, "weighted", sampled_counts, Shape::Strict, 2)));
+  // A sample as large as the node is the node: the same tree as exact counts, whatever the seed.
+  const ParamAssignments whole_sample = {{"candidates", "0"}, {"sample", "1000000"}};
+  EXPECT_TRUE(identical(build(scene.polygons, "weighted", whole_sample, Shape::Strict, 2),
+                        build(scene.polygons, "weighted", exhaustive, Shape::Strict, 1)));
 }

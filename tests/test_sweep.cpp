@@ -88,12 +88,40 @@ TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
     for (const auto& j : jobs) {
       keys.insert(j.key);
       scenes.insert(j.scene);
-      if (!j.incremental) heuristics_seen.insert(j.heuristic);
+      if (!j.incremental) heuristics_seen.insert(parse_heuristic_variant(j.heuristic).name);
     }
     EXPECT_EQ(keys.size(), jobs.size());
     EXPECT_EQ(scenes.size(), generators().size());
     EXPECT_EQ(heuristics_seen.size(), heuristics().size());
   }
+}
+
+// The scorers whose sources score every plane run that way too, beside their sampled defaults, in
+// every suite but smoke; the label is the variant, and its parameters reach the build.
+TEST(SweepSuites, ExhaustiveVariantsRunBesideTheSampledDefaults) {
+  for (const char* name : {"quick", "default", "full"}) {
+    std::set<std::string> variants;
+    for (const auto& j : expand(find_suite(name))) {
+      const nlohmann::json id = job_identity(j);
+      if (j.heuristic.find(':') == std::string::npos) continue;
+      variants.insert(j.heuristic);
+      EXPECT_EQ(id["heuristic_params"]["candidates"], 0) << j.heuristic;
+      EXPECT_NE(id["command"].get<std::string>().find(" --param candidates=0"), std::string::npos) << id["command"];
+    }
+    EXPECT_EQ(variants, (std::set<std::string>{"balanced:candidates=0", "min-relation:candidates=0",
+                                               "weighted:candidates=0", "quake:candidates=0"}))
+        << name;
+  }
+}
+
+TEST(SweepSuites, HeuristicVariantLabelsParseAndBadOnesAreRejected) {
+  const HeuristicVariant plain = parse_heuristic_variant("crystal");
+  EXPECT_EQ(plain.name, "crystal");
+  EXPECT_TRUE(plain.params.empty());
+  const HeuristicVariant v = parse_heuristic_variant("weighted:candidates=0,sample=64");
+  EXPECT_EQ(v.name, "weighted");
+  EXPECT_EQ(v.params, (ParamAssignments{{"candidates", "0"}, {"sample", "64"}}));
+  EXPECT_THROW(parse_heuristic_variant("weighted:candidates"), UsageError);
 }
 
 // CI gates on the quick suite, so coarse leaves and the incremental build (one job per scene, size,

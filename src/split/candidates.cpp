@@ -46,8 +46,29 @@ std::vector<std::uint32_t> candidate_fragments(const SplitContext& ctx, std::siz
   return ids;
 }
 
-SideCounts count_against(const SplitContext& ctx, std::uint32_t id) {
-  return ctx.frags.count_sides(ctx.ids, ctx.planes[ctx.frags.plane(id)], ctx.tol.plane_eps);
+ParamSpec sample_param(double default_s) {
+  return {"sample", ParamSpec::Kind::Integer,
+          "fragments of the node (drawn once per node, seeded) each candidate is counted against, the counts "
+          "scaled to the node; 0 = all",
+          default_s, 0, 1e9, {}};
+}
+
+SideCounter::SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng) : ctx_(ctx) {
+  const std::size_t m = ctx.ids.size();
+  if (s == 0 || s >= m) return;
+  std::vector<std::uint32_t> positions(m);
+  for (std::uint32_t i = 0; i < m; ++i) positions[i] = i;
+  for (std::size_t i = 0; i < s; ++i) std::swap(positions[i], positions[i + rng.below(m - i)]);
+  positions.resize(s);
+  std::sort(positions.begin(), positions.end());
+  sampled_.resize(s);
+  for (std::size_t i = 0; i < s; ++i) sampled_[i] = ctx.ids[positions[i]];
+  scale_ = static_cast<double>(m) / static_cast<double>(s);
+}
+
+SideCounts SideCounter::operator()(std::uint32_t id) const {
+  const std::span<const std::uint32_t> counted = sampled_.empty() ? ctx_.ids : std::span<const std::uint32_t>(sampled_);
+  return ctx_.frags.count_sides(counted, ctx_.planes[ctx_.frags.plane(id)], ctx_.tol.plane_eps);
 }
 
 }  // namespace bsp

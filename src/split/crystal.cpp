@@ -4,7 +4,7 @@
 // (balance_factor·|front + splits − back| + split_factor·splits) / n. Differences kept on purpose so
 // the preset shares the family's scorer: the balance term here is the symmetric |front − back|
 // (Crystal Space puts spanning polygons on the front side only), each candidate is classified
-// against all of the node's fragments (Crystal Space against 20 more random draws), and the 20
+// against all of the node's fragments (Crystal Space against 20 more random draws: `sample=20`), and the 20
 // candidates are drawn without replacement from the distinct planes (Crystal Space: rand() % n,
 // with replacement). Dividing by n does not change the argmin and is dropped.
 #include "split/weighted.h"
@@ -21,7 +21,7 @@ constexpr std::uint64_t kCrystalCandidates = 20;
 
 HeuristicInfo crystal_heuristic() {
   return weighted_family("crystal", "Crystal Space: min |front-back| + 4*splits over 20 sampled candidates",
-                         WeightedSettings{kCrystalSplit, kCrystalBalance, 0.0, 0.0, kCrystalCandidates}, 0xc5a1);
+                         WeightedSettings{kCrystalSplit, kCrystalBalance, 0.0, 0.0, kCrystalCandidates, 0}, 0xc5a1);
 }
 
 }  // namespace bsp

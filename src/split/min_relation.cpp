@@ -10,7 +10,7 @@
 // loop would not end: then every candidate qualifies and the fewest splits decide.
 //
 // Counting once and lowering the threshold over the stored counts picks what the seed's recount per
-// round picks. Cost per node: O(m log m) + O(k·m) classifications.
+// round picks. Cost per node: O(m log m) + O(k·s) classifications (s = sample, or m).
 #include <algorithm>
 #include <vector>
 
@@ -30,9 +30,11 @@ struct MinRelationSettings {
   double min_relation;  // MINIMUMRELATION [DividingPolygon]
   double scale;         // MINRELATIONSCALE [DividingPolygon]
   std::uint64_t candidates;
+  std::uint64_t sample;
 
   static MinRelationSettings from(const ParamSet& p) {
-    return {p.real("min_relation"), p.real("min_relation_scale"), static_cast<std::uint64_t>(p.integer("candidates"))};
+    return {p.real("min_relation"), p.real("min_relation_scale"), static_cast<std::uint64_t>(p.integer("candidates")),
+            static_cast<std::uint64_t>(p.integer("sample"))};
   }
 };
 
@@ -53,8 +55,10 @@ class MinRelationSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     std::vector<Scored> scored;
-    for (auto id : candidate_fragments(ctx, s_.candidates, rng_)) {
-      const SideCounts c = count_against(ctx, id);
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng_);
+    const SideCounter count(ctx, s_.sample, rng_);
+    for (auto id : candidates) {
+      const SideCounts c = count(id);
       scored.push_back({id, c.spanning, relation(c)});
     }
     return SplitChoice::of_fragment(best_qualifying(scored, threshold(scored)));
@@ -72,7 +76,8 @@ class MinRelationSplitter final : public Splitter {
     return t;
   }
 
-  // Seed 004 lines 50-55: fewest spanning among those above the threshold, ties by relation.
+  // CHOOSE-DIVIDING-POLYGON's final pick [DividingPolygon]: fewest spanning among those above the
+  // threshold, ties by relation.
   static std::uint32_t best_qualifying(const std::vector<Scored>& scored, double t) {
     const Scored* best = nullptr;
     for (const auto& s : scored) {
@@ -100,7 +105,8 @@ HeuristicInfo min_relation_heuristic() {
             "MINRELATIONSCALE: divides the threshold after a round with no qualifying candidate (>= 2 "
             "keeps the rounds O(log m))",
             2.0, 2.0, 1e6, {}},
-           candidates_param(0, "; the dividing-polygon method scores all")},
+           candidates_param(static_cast<double>(kSampledCandidates), "; the dividing-polygon method scores all (candidates = 0)"),
+           sample_param(0)},
           true,
           [](const ParamSet& p, std::uint64_t seed) {
             return std::make_unique<MinRelationSplitter>(MinRelationSettings::from(p), stream_seed(seed, 0x4e1a));

@@ -15,7 +15,7 @@
 // metric measures), cut by the planes on the path from the root (ctx.cell_planes), each
 // candidate's children by one more clip. The previous node's cell is cached, and the build visits
 // a child right after its parent, so most cells cost one clip; after a leaf the cell is rebuilt
-// from the box in O(depth) clips. Cost per node: O(m log m) + O(k·m)
+// from the box in O(depth) clips. Cost per node: O(m log m) + O(k·s) (s = sample, or m)
 // classifications + k clips (2k for model = area) of a cell with O(depth) faces.
 #include <algorithm>
 #include <cmath>
@@ -43,12 +43,13 @@ struct NaylorSettings {
   Estimate estimate;
   double margin;
   std::uint64_t candidates;
+  std::uint64_t sample;
 
   static NaylorSettings from(const ParamSet& p) {
     const std::string& e = p.choice("estimate");
     return {p.choice("model") == "volume" ? Model::Volume : Model::Area,
             e == "nlogn" ? Estimate::NLogN : (e == "linear" ? Estimate::Linear : Estimate::Log), p.real("margin"),
-            static_cast<std::uint64_t>(p.integer("candidates"))};
+            static_cast<std::uint64_t>(p.integer("candidates")), static_cast<std::uint64_t>(p.integer("sample"))};
   }
 };
 
@@ -62,9 +63,11 @@ class NaylorSplitter final : public Splitter {
     update_cell(ctx);
     const double whole = measure(cell_);
     const auto candidates = candidate_fragments(ctx, s_.candidates, rng_);
-    return SplitChoice::of_fragment(argmin_candidate(ctx, candidates, [&](std::uint32_t id, const SideCounts& c) {
+    const SideCounter count(ctx, s_.sample, rng_);
+    return SplitChoice::of_fragment(argmin_candidate(count, candidates, [&](std::uint32_t id, const SideCounts& c) {
       const auto [p_front, p_back] = probabilities(ctx, ctx.planes[ctx.frags.plane(id)], whole);
-      return 1.0 + p_back * estimate(c.back + c.spanning) + p_front * estimate(c.front + c.spanning);
+      return 1.0 + p_back * estimate(count.scale() * (c.back + c.spanning)) +
+             p_front * estimate(count.scale() * (c.front + c.spanning));
     }));
   }
 
@@ -91,8 +94,7 @@ class NaylorSplitter final : public Splitter {
   //  linear = n: testing every fragment of the cell, what the surface area heuristic of ray-tracing
   //    kd-trees charges (MacDonald and Booth 1990);
   //  log = log2(n+1): the depth of a balanced subtree, the path a point query walks.
-  double estimate(std::uint32_t n) const {
-    const double x = n;
+  double estimate(double x) const {
     switch (s_.estimate) {
       case Estimate::NLogN: return x * std::log2(x + 1);
       case Estimate::Linear: return x;
@@ -136,7 +138,7 @@ HeuristicInfo naylor_heuristic() {
             "the root cell is the scene box grown by this times max(diagonal, 1) on every side (Box::enlarged, "
             "the root cell of the expected-cost metric)",
             0.01, 0.0, 10.0, {}},
-           candidates_param(16, "; each also costs one cell clip (two for model=area)")},
+           candidates_param(16, "; each also costs one cell clip (two for model=area)"), sample_param(0)},
           true,
           [](const ParamSet& p, std::uint64_t seed) {
             return std::make_unique<NaylorSplitter>(NaylorSettings::from(p), stream_seed(seed, 0x9a71));

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "split/candidates.h"
 #include "split/registry.h"
 
 namespace bsp {
@@ -19,14 +20,16 @@ struct WeightedSettings {
   double balance = 1.0;
   double coplanar = 0.0;
   double axial = 0.0;
-  std::uint64_t candidates = 0;  // 0 = every distinct plane
+  std::uint64_t candidates = kSampledCandidates;  // 0 = every distinct plane
+  std::uint64_t sample = 0;      // fragments each candidate is counted against; 0 = all
 
   static WeightedSettings from(const ParamSet& p);
 };
 
 // A registry entry for the weighted scorer whose parameters default to `defaults`; `stream` tells
 // the presets' sampling streams apart.
+// `candidates_note` ends the candidates parameter's description (what the preset's source does).
 HeuristicInfo weighted_family(std::string name, std::string summary, const WeightedSettings& defaults,
-                              std::uint64_t stream);
+                              std::uint64_t stream, const std::string& candidates_note = "");
 
 }  // namespace bsp

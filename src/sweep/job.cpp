@@ -79,11 +79,34 @@ ParamSet scene_params(const Job& job) {
 
 ParamSet heuristic_params(const Job& job) {
   if (job.incremental) return ParamSet::resolve({}, {}, job.heuristic);
-  const HeuristicInfo& h = find_heuristic(job.heuristic);
-  return ParamSet::resolve(h.params, {}, "heuristic " + h.name);
+  const HeuristicVariant v = parse_heuristic_variant(job.heuristic);
+  const HeuristicInfo& h = find_heuristic(v.name);
+  return ParamSet::resolve(h.params, v.params, "heuristic " + h.name);
+}
+
+std::string build_arguments(const Job& job) {
+  if (job.incremental) return " --incremental --order shuffled";
+  const HeuristicVariant v = parse_heuristic_variant(job.heuristic);
+  std::string out = " --heuristic " + v.name;
+  for (const auto& [k, value] : v.params) out += " --param " + k + "=" + value;
+  return out;
 }
 
 }  // namespace
+
+HeuristicVariant parse_heuristic_variant(const std::string& label) {
+  const auto colon = label.find(':');
+  HeuristicVariant v{label.substr(0, colon), {}};
+  if (colon == std::string::npos) return v;
+  std::string_view rest(label);
+  rest.remove_prefix(colon + 1);
+  while (!rest.empty()) {
+    const auto comma = rest.find(',');
+    v.params.push_back(parse_assignment(rest.substr(0, comma)));
+    rest.remove_prefix(comma == std::string_view::npos ? rest.size() : comma + 1);
+  }
+  return v;
+}
 
 void assign_key(Job& job) {
   Hasher h;
@@ -142,9 +165,7 @@ std::string definition_hash(const std::string& suite_name, const std::vector<Job
 nlohmann::json job_identity(const Job& job) {
   std::string command = "bspbench build --scene " + job.scene;
   if (job.n > 0) command += " --n " + std::to_string(job.n);
-  command += " --seed " + std::to_string(job.seed) +
-             (job.incremental ? " --incremental --order shuffled" : " --heuristic " + job.heuristic) +
-             " --shape " + shape_name(job.shape);
+  command += " --seed " + std::to_string(job.seed) + build_arguments(job) + " --shape " + shape_name(job.shape);
   return {{"scene", job.scene},
           {"scene_params", scene_params(job).to_json()},
           {"heuristic", job.heuristic},

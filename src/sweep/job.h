@@ -18,7 +18,7 @@ namespace bsp::sweep {
 struct Job {
   std::string scene;
   ParamAssignments scene_params;  // n and seed when the generator has them
-  std::string heuristic;  // kIncrementalLabel (tree/build.h) for an incremental build
+  std::string heuristic;  // a HeuristicVariant's label; kIncrementalLabel (tree/build.h) for an incremental build
   bool incremental = false;  // Thibault–Naylor insertion in a seeded shuffled order; no heuristic
   Shape shape = Shape::Strict;
   std::uint64_t seed = 1;
@@ -26,6 +26,15 @@ struct Job {
   std::uint32_t validation_views = 0;
   std::string key;  // 16 hex digits, see the header comment
 };
+
+// A suite's heuristic entry: a registered name, "NAME", or a name with parameters,
+// "NAME:k=v,k=v" (e.g. "weighted:candidates=0", the exhaustive variant). The whole text labels the
+// runs in reports and in the gate's groups, so a variant is compared with itself only.
+struct HeuristicVariant {
+  std::string name;
+  ParamAssignments params;
+};
+HeuristicVariant parse_heuristic_variant(const std::string& label);
 
 // Every job of the suite, without duplicates, in a fixed order: largest sizes first (so a parallel
 // run starts its long jobs early), ties broken by key.

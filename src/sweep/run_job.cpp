@@ -70,7 +70,8 @@ Tree build_once(const Job& job, const Scene& scene) {
     options.order_seed = insertion_order_seed(job.seed);
     return build_incremental_tree(scene.polygons, options);
   }
-  auto splitter = make_splitter(job.heuristic, {}, job.seed);
+  const HeuristicVariant variant = parse_heuristic_variant(job.heuristic);
+  auto splitter = make_splitter(variant.name, variant.params, job.seed);
   return build_tree(scene.polygons, *splitter, options);
 }
 

@@ -13,6 +13,11 @@ std::vector<SceneSizes> superlinear(std::vector<std::uint64_t> saddle, std::vect
   return {{"saddle-grid", std::move(saddle)}, {"orthogonal-stacks", std::move(stacks)}};
 }
 
+// The scorers as their sources run them, scoring every plane of every node (O(m²) per node), beside
+// their sampled defaults; only at the sizes where they finish in seconds.
+const std::vector<std::string> kExhaustive = {"balanced:candidates=0", "min-relation:candidates=0",
+                                              "weighted:candidates=0", "quake:candidates=0"};
+
 Suite smoke() {
   return {"smoke",
           "seconds: every scene and heuristic at two tiny sizes, one view; for tests and trying things out",
@@ -24,9 +29,10 @@ Suite smoke() {
 Suite quick() {
   return {"quick",
           "about 40 s on 2 cores at load average 5: every scene and heuristic, strict at 3 sizes to 10^3 and coarse at 300, "
-          "incremental at 100 and 300, 2 seeds, 2 views; CI gates on it",
+          "the exhaustive scorers at 300, incremental at 100 and 300, 2 seeds, 2 views; CI gates on it",
           {{{}, {}, {100, 300, 1000}, superlinear({30, 60, 120}, {100, 200, 400}), {1, 2}, {Shape::Strict}, {2, 0, 2}},
            {{}, {}, {300}, superlinear({60}, {200}), {1, 2}, {Shape::Coarse}, {2, 0, 2}},
+           {{}, kExhaustive, {300}, superlinear({60}, {200}), {1, 2}, {Shape::Strict}, {2, 0, 2}},
            {{}, {}, {100, 300}, superlinear({30, 60}, {100, 200}), {1, 2}, {Shape::Strict, Shape::Coarse}, {2, 0, 2},
             true}}};
 }
@@ -35,6 +41,8 @@ Suite default_suite() {
   return {"default",
           "about 4 minutes on 2 cores: every scene and heuristic, 4 sizes to 3*10^3, 3 seeds, 2 views (1 past 10^3)",
           {{{}, {}, {100, 300, 1000, 3000}, superlinear({30, 60, 120, 180}, {100, 200, 400, 800}), {1, 2, 3},
+            {Shape::Strict}, {2, 1000, 1}},
+           {{}, kExhaustive, {100, 300, 1000, 3000}, superlinear({30, 60, 120, 180}, {100, 200, 400, 800}), {1, 2, 3},
             {Shape::Strict}, {2, 1000, 1}}}};
 }
 
@@ -46,6 +54,8 @@ Suite full() {
           "random-disjoint and sphere-field with the near-n-log-n heuristics",
           {{{}, {}, {100, 300, 1000, 3000, 10000}, superlinear({30, 60, 120, 240}, {100, 200, 400, 800, 1600}),
             {1, 2, 3, 4, 5}, {Shape::Strict, Shape::Coarse}, {4, 1000, 1}},
+           {{}, kExhaustive, {100, 300, 1000, 3000, 10000}, superlinear({30, 60, 120, 240}, {100, 200, 400, 800, 1600}),
+            {1, 2, 3, 4, 5}, {Shape::Strict}, {4, 1000, 1}},
            {{"random-disjoint", "sphere-field"}, {"first", "random", "crystal"}, {30000, 100000, 300000, 1000000}, {},
             {1, 2, 3}, {Shape::Strict}, {1, 0, 1}}}};
 }
