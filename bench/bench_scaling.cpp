@@ -1,21 +1,28 @@
-// bspbench_bench_scaling: build and full traversal on random-triangles at
-// N = 10^3, 10^4, 10^5, tree metrics as counters:
-//   scaling/build/n:N/HEURISTIC     items = input triangles
-//   scaling/traverse/n:N/HEURISTIC  back-to-front from the 8 metric views; items = fragments emitted
+// bspbench_bench_scaling: build and back-to-front traversal at N = 10^4, 10^5, 10^6 on
+// random-disjoint and sphere-field (scenes whose density stays the same as N grows), for every
+// heuristic at its defaults, each beside its in-run reference (references.h):
+//   scaling/build/SCENE/n:N/HEURISTIC     items = input polygons; counters: the tree's metrics,
+//       embree_bvh_seconds (Embree's MEDIUM BVH of the same triangles, one thread like the build),
+//       build_vs_embree (median build time / that), bytes_per_fragment
+//   scaling/traverse/SCENE/n:N/HEURISTIC  back-to-front from the 8 metric views; items = fragments
+//       emitted; counters: sort_seconds (std::sort of as many (depth, id) pairs as one view emits),
+//       traverse_vs_sort (median time per view / that)
+// Both ratios come from medians measured in the same benchmark, minutes apart at most, so machine
+// load cancels as far as it can.
 //
-// The triangles' `size` shrinks as 0.1 * (1000 / N)^(1/3), the generator's default at N = 10^3,
-// so each triangle overlaps about as many others at every N and the growth measured is the
-// heuristic's, not the clutter's. (At the fixed default size, 10^5 triangles split into ~15 million
-// fragments: ~7 GB and minutes per build.)
-//
-// Default heuristics: first, random and crystal, whose builds stay near n log n; the exhaustive
-// scorers take hours at 10^5 — pick them with --bsp_heuristics (and smaller --bsp_sizes), e.g.
-//   build/bench/bspbench_bench_scaling --bsp_heuristics=quake,naylor --bsp_sizes=1000,10000
+// random-triangles can be chosen too (--bsp_scenes=random-triangles): its `size` then shrinks as
+// 0.1 * (1000 / N)^(1/3), the generator's default at N = 10^3, so each triangle overlaps about as
+// many others at every N and the growth measured is the heuristic's, not the clutter's.
+// Select with --bsp_scenes, --bsp_heuristics, --bsp_sizes (bench_common.h), e.g.
+//   build/bench/bspbench_bench_scaling --bsp_heuristics=crystal --bsp_sizes=1000000
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iostream>
 
 #include "bench_common.h"
 #include "metrics/traversal_cost.h"
+#include "references.h"
 #include "split/registry.h"
 #include "tree/build.h"
 #include "tree/traverse.h"
@@ -24,29 +31,81 @@ namespace bsp::bench {
 
 namespace {
 
-constexpr double kDefaultSize = 0.1;   // random-triangles' default `size`
-constexpr double kDefaultN = 1000;     // the N at which it applies unchanged
+constexpr double kDefaultSize = 0.1;  // random-triangles' default `size`
+constexpr double kDefaultN = 1000;    // the N at which it applies unchanged
+constexpr int kReferenceRepeats = 5;  // timed runs of each reference; their median is used
+constexpr int kBuildThreads = 1;      // the build is single-threaded, so the reference is too
 
-std::string size_for(std::uint64_t n) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", kDefaultSize * std::cbrt(kDefaultN / static_cast<double>(n)));
-  return buf;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+ParamAssignments scene_params(const std::string& name, std::uint64_t n) {
+  ParamAssignments p = {{"n", std::to_string(n)}, {"seed", std::to_string(kSeed)}};
+  if (name == "random-triangles") {
+    char size[32];
+    std::snprintf(size, sizeof size, "%.6g", kDefaultSize * std::cbrt(kDefaultN / static_cast<double>(n)));
+    p.emplace_back("size", size);
+  }
+  return p;
+}
+
+void bm_build_vs_embree(benchmark::State& state, const Scene* s, std::string h) {
+  std::vector<double> times;
+  for (auto _ : state) {
+    const auto start = Clock::now();
+    auto splitter = make_splitter(h, {}, kSeed);
+    const Tree t = build_tree(s->polygons, *splitter);
+    benchmark::DoNotOptimize(t.nodes.data());
+    times.push_back(seconds_since(start));
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(s->polygons.size()));
+  const double embree = embree_bvh_build_seconds(s->polygons, kBuildThreads, kReferenceRepeats);
+  const Tree& t = tree(*s, h, kSeed);
+  set_tree_counters(state);
+  state.counters["embree_bvh_seconds"] = embree;
+  state.counters["build_vs_embree"] = median(times) / embree;
+  state.counters["bytes_per_fragment"] =
+      t.fragments.empty() ? 0.0 : static_cast<double>(t.bytes()) / static_cast<double>(t.fragments.size());
+}
+
+void bm_traverse_vs_sort(benchmark::State& state, const Scene* s, std::string h) {
+  const Tree& t = tree(*s, h, kSeed);
+  const auto views = metric_views(t.bounds, kViews);
+  std::int64_t emitted = 0;
+  std::vector<double> per_view;
+  for (auto _ : state) {
+    const auto start = Clock::now();
+    for (const auto& v : views) emitted += traverse(t, v.eye, Order::BackToFront, [](std::uint32_t) {}).fragments_emitted;
+    per_view.push_back(seconds_since(start) / static_cast<double>(views.size()));
+  }
+  state.SetItemsProcessed(emitted);
+  set_tree_counters(state);
+  const double sort = depth_sort_seconds(t.fragments.size(), kReferenceRepeats);
+  state.counters["sort_seconds"] = sort;
+  state.counters["traverse_vs_sort"] = median(per_view) / sort;
 }
 
 void register_all(const Selection& sel) {
-  for (auto n : sel.sizes) {
-    const Scene* s = &scene("random-triangles",
-                            {{"n", std::to_string(n)}, {"seed", std::to_string(kSeed)}, {"size", size_for(n)}});
-    for (const auto& h : sel.heuristics) {
-      const std::string tail = "/n:" + std::to_string(n) + "/" + h;
-      benchmark::RegisterBenchmark(("scaling/build" + tail).c_str(), bm_build, s, h)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
-      benchmark::RegisterBenchmark(("scaling/traverse" + tail).c_str(), bm_traverse, s, h)
-          ->Unit(benchmark::kMillisecond)
-          ->UseRealTime();
+  for (const auto& name : sel.scenes)
+    for (auto n : sel.sizes) {
+      const Scene* s = &scene(name, scene_params(name, n));
+      for (const auto& h : sel.heuristics) {
+        const std::string tail = "/" + name + "/n:" + std::to_string(n) + "/" + h;
+        benchmark::RegisterBenchmark(("scaling/build" + tail).c_str(), bm_build_vs_embree, s, h)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+        benchmark::RegisterBenchmark(("scaling/traverse" + tail).c_str(), bm_traverse_vs_sort, s, h)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+      }
     }
-  }
 }
 
 }  // namespace
@@ -55,8 +114,7 @@ void register_all(const Selection& sel) {
 
 int main(int argc, char** argv) {
   try {
-    const auto sel =
-        bsp::bench::take_selection(argc, argv, {{"random-triangles"}, {"first", "random", "crystal"}, {1000, 10000, 100000}});
+    const auto sel = bsp::bench::take_selection(argc, argv, {{"random-disjoint", "sphere-field"}, {}, {10000, 100000, 1000000}});
     bsp::bench::register_all(sel);
     return bsp::bench::run_benchmarks(argc, argv, "bspbench_bench_scaling");
   } catch (const std::exception& e) {  // UsageError for a bad name or size

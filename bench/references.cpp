@@ -1,0 +1,95 @@
+#include "references.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace bsp::bench {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// The polygons fan-triangulated into float vertex and index arrays, as a renderer would hand them
+// to Embree.
+struct Triangles {
+  std::vector<float> vertices;  // x, y, z per vertex, plus one float of padding Embree may read
+  std::vector<unsigned> indices;
+};
+
+Triangles triangulate(std::span<const Polygon> polygons) {
+  Triangles t;
+  for (const Polygon& p : polygons) {
+    const auto base = static_cast<unsigned>(t.vertices.size() / 3);
+    for (const Vertex& v : p.verts)
+      t.vertices.insert(t.vertices.end(), {static_cast<float>(v.p.x), static_cast<float>(v.p.y), static_cast<float>(v.p.z)});
+    for (unsigned i = 1; i + 1 < p.verts.size(); ++i) t.indices.insert(t.indices.end(), {base, base + i, base + i + 1});
+  }
+  t.vertices.push_back(0.0f);
+  return t;
+}
+
+double one_bvh_build(RTCDevice device, const Triangles& t) {
+  const auto start = Clock::now();
+  RTCScene scene = rtcNewScene(device);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_MEDIUM);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, t.vertices.data(), 0,
+                             3 * sizeof(float), (t.vertices.size() - 1) / 3);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, t.indices.data(), 0,
+                             3 * sizeof(unsigned), t.indices.size() / 3);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene);
+  const double seconds = seconds_since(start);
+  rtcReleaseScene(scene);
+  if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the reference BVH");
+  return seconds;
+}
+
+}  // namespace
+
+double embree_bvh_build_seconds(std::span<const Polygon> polygons, int threads, int repeats) {
+  const Triangles t = triangulate(polygons);
+  const std::string config = "threads=" + std::to_string(threads);
+  RTCDevice device = rtcNewDevice(config.c_str());
+  if (!device) throw std::runtime_error("Embree: cannot create a device");
+  std::vector<double> times;
+  for (int i = 0; i < repeats; ++i) times.push_back(one_bvh_build(device, t));
+  rtcReleaseDevice(device);
+  return median(times);
+}
+
+double depth_sort_seconds(std::size_t pairs, int repeats) {
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> depth(0.0f, 1.0f);
+  std::vector<std::pair<float, std::uint32_t>> input(pairs);
+  for (std::size_t i = 0; i < pairs; ++i) input[i] = {depth(rng), static_cast<std::uint32_t>(i)};
+  std::vector<double> times;
+  for (int r = 0; r < repeats; ++r) {
+    auto work = input;
+    const auto start = Clock::now();
+    std::sort(work.begin(), work.end());
+    times.push_back(seconds_since(start));
+  }
+  return median(times);
+}
+
+}  // namespace bsp::bench

@@ -1,0 +1,20 @@
+#pragma once
+// In-run references for the scaling benchmark: what a BSP build and a back-to-front traversal are
+// measured against, on the same machine in the same run.
+//  - Embree 3's BVH build (RTC_BUILD_QUALITY_MEDIUM, one triangle geometry over shared buffers)
+//    of the same polygons, fan-triangulated, on a device limited to the same number of threads:
+//    the cost of a good spatial hierarchy over the same input.
+//  - std::sort of as many (float depth, uint32 id) pairs as the traversal emits: the cost of a
+//    plain painter's-algorithm depth sort, which a back-to-front traversal replaces.
+// Each returns the median of `repeats` timed runs, in seconds.
+#include <cstddef>
+#include <span>
+
+#include "geometry/polygon.h"
+
+namespace bsp::bench {
+
+double embree_bvh_build_seconds(std::span<const Polygon> polygons, int threads, int repeats);
+double depth_sort_seconds(std::size_t pairs, int repeats);
+
+}  // namespace bsp::bench
