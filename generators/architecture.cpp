@@ -181,7 +181,8 @@ GeneratorInfo architecture_generator() {
           "12 per exterior wall (4 g, with a window), 4 per pillar ((g+1)^2); 4 per roof cell (g^2)",
           {n_param(5000, "largest number of polygons; the grid size g is chosen to stay within it"), seed_param(),
            {"stories", ParamSpec::Kind::Integer, "number of stories", 2, 1, 64, {}}},
-          make};
+          make,
+          true};
 }
 
 }  // namespace bsp

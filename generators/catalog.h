@@ -18,6 +18,10 @@ struct GeneratorInfo {
   std::string count_rule;  // exactly how the parameters map to the polygon count
   std::vector<ParamSpec> params;
   std::function<std::vector<Polygon>(const ParamSet&)> make;
+  // Whether the scene keeps its density as n grows (more of the same neighbourhood, as a larger
+  // level or a finer grid), so growth against n measures the heuristic; false where each polygon
+  // meets more others as n grows (random-triangles at a fixed size, the lower-bound constructions).
+  bool constant_density = false;
 };
 
 const std::vector<GeneratorInfo>& generators();

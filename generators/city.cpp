@@ -54,7 +54,8 @@ GeneratorInfo city_generator() {
           {n_param(6000, "largest number of polygons (rounded down to 6 g^2)"), seed_param(),
            {"max_height", ParamSpec::Kind::Real, "tallest building, in lot sides (lots are 1 x 1)", 6.0, 0.5, 1000,
             {}}},
-          make};
+          make,
+          true};
 }
 
 }  // namespace bsp

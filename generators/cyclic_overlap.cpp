@@ -75,7 +75,8 @@ GeneratorInfo cyclic_overlap_generator() {
           "groups of three mutually overlapping sticks that no depth sort can order: a BSP must cut every cycle",
           "3 * max(1, floor(n / 3)) triangles: floor(n/3) groups of three",
           {n_param(300, "number of triangles (rounded down to a multiple of 3, at least 3)"), seed_param()},
-          make};
+          make,
+          true};
 }
 
 }  // namespace bsp

@@ -134,7 +134,8 @@ GeneratorInfo near_degenerate_generator() {
            {"far", ParamSpec::Kind::Real,
             "half-side of the scene box set by the two huge quads; the tolerance is 1e-9 * 2 sqrt(3) * far", 1e4, 1,
             1e12, {}}},
-          make};
+          make,
+          true};
 }
 
 }  // namespace bsp

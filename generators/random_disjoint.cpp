@@ -61,7 +61,8 @@ GeneratorInfo random_disjoint_generator() {
            {"fill", ParamSpec::Kind::Real,
             "side of the centred sub-box of its grid cell that holds a triangle's vertices, as a fraction of the cell",
             0.8, 0.05, 0.99, {}}},
-          make};
+          make,
+          true};
 }
 
 }  // namespace bsp

@@ -106,7 +106,8 @@ GeneratorInfo sphere_field_generator() {
            {"max_frequency", ParamSpec::Kind::Integer,
             "finest sphere: frequencies cycle 1..max_frequency (a frequency-f sphere has 20 f^2 triangles)", 8, 1, 200,
             {}}},
-          make};
+          make,
+          true};
 }
 
 }  // namespace bsp

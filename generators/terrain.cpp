@@ -132,7 +132,8 @@ GeneratorInfo terrain_generator() {
             0.0, 100, {}},
            {"overhangs", ParamSpec::Kind::Integer,
             "number of shelves hovering over the ground (0: a pure height field)", 0, 0, 1e6, {}}},
-          make};
+          make,
+          true};
 }
 
 }  // namespace bsp

@@ -114,6 +114,27 @@ TEST(SweepSuites, ExhaustiveVariantsRunBesideTheSampledDefaults) {
   }
 }
 
+// architecture builds one 136-polygon building at every n up to 300: the quick suite runs it once
+// per heuristic, shape and seed, at the smallest of those sizes, while every other scene keeps each size.
+TEST(SweepSuites, SizesThatMakeTheSameSceneRunOnce) {
+  std::map<std::string, std::set<std::uint64_t>> sizes;
+  for (const auto& j : expand(find_suite("quick")))
+    if (j.heuristic == "crystal" && j.shape == Shape::Strict && j.seed == 1) sizes[j.scene].insert(j.n);
+  EXPECT_EQ(sizes["architecture"], (std::set<std::uint64_t>{100, 1000}));
+  EXPECT_EQ(sizes["random-disjoint"], (std::set<std::uint64_t>{100, 300, 1000}));
+}
+
+// Growth against n is reported as the heuristic's only on scenes that keep their density; the
+// catalog says which, and every run's identity carries it to the report.
+TEST(SweepSuites, RunsSayWhetherTheirSceneKeepsItsDensity) {
+  std::map<std::string, bool> density;
+  for (const auto& j : expand(find_suite("smoke"))) density[j.scene] = job_identity(j)["constant_density"];
+  for (const char* grows : {"random-triangles", "saddle-grid", "orthogonal-stacks", "coplanar-heavy"})
+    EXPECT_FALSE(density.at(grows)) << grows;
+  for (const char* constant : {"random-disjoint", "sphere-field", "architecture", "city", "terrain"})
+    EXPECT_TRUE(density.at(constant)) << constant;
+}
+
 TEST(SweepSuites, HeuristicVariantLabelsParseAndBadOnesAreRejected) {
   const HeuristicVariant plain = parse_heuristic_variant("crystal");
   EXPECT_EQ(plain.name, "crystal");

@@ -18,6 +18,9 @@ void print(const nlohmann::json& list, bool json) {
   }
   for (const auto& item : list) {
     std::cout << item["name"].get<std::string>() << ": " << item["summary"].get<std::string>() << "\n";
+    if (item.contains("constant_density"))
+      std::cout << "    density: " << (item["constant_density"].get<bool>() ? "constant as n grows" : "grows with n")
+                << "\n";
     for (const auto& p : item["params"])
       std::cout << "    " << p["name"].get<std::string>() << " = " << p["default"].dump() << "  "
                 << p["doc"].get<std::string>() << "\n";
@@ -41,7 +44,7 @@ int run_scenes(Args& args) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& g : generators())
     list.push_back({{"name", g.name}, {"kind", "generator"}, {"summary", g.purpose}, {"count", g.count_rule},
-                    {"params", specs_to_json(g.params)}});
+                    {"constant_density", g.constant_density}, {"params", specs_to_json(g.params)}});
   for (const auto& m : available_meshes())
     list.push_back({{"name", std::string(kMeshPrefix) + m.name}, {"kind", "mesh"}, {"path", m.path},
                     {"summary", "real mesh read from " + m.path},

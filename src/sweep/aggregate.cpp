@@ -27,7 +27,11 @@ nlohmann::json group_head(const nlohmann::json& id) {
   nlohmann::json other = id["scene_params"];
   other.erase("n");
   other.erase("seed");
-  return {{"scene", id["scene"]}, {"heuristic", id["heuristic"]}, {"shape", id["shape"]}, {"scene_params", other}};
+  return {{"scene", id["scene"]},
+          {"heuristic", id["heuristic"]},
+          {"shape", id["shape"]},
+          {"scene_params", other},
+          {"constant_density", id.value("constant_density", false)}};
 }
 
 // Summary of every numeric field of `section` over the runs.
@@ -61,13 +65,18 @@ nlohmann::json size_entry(std::uint64_t n, const std::vector<const nlohmann::jso
           {"timings", summarize_section(runs, "timings")}};
 }
 
-nlohmann::json growth(const Group& g, const char* section, std::string_view field) {
+// The run's polygon count, or with `against_fragments` the fragments its tree holds.
+double growth_x(const nlohmann::json& run, bool against_fragments) {
+  return against_fragments ? run["metrics"].value("fragments", 0.0) : run["id"]["n_polygons"].get<double>();
+}
+
+nlohmann::json growth(const Group& g, const char* section, std::string_view field, bool against_fragments = false) {
   std::vector<double> x, y;
   for (const auto& [n, runs] : g.by_n)
     for (const auto* r : runs) {
       const auto& v = (*r)[section];
       if (!v.contains(field) || !v[std::string(field)].is_number()) continue;
-      x.push_back((*r)["id"]["n_polygons"].get<double>());
+      x.push_back(growth_x(*r, against_fragments));
       y.push_back(v[std::string(field)].get<double>());
     }
   try {
@@ -93,6 +102,9 @@ nlohmann::json group_json(const Group& g) {
   out["by_n"] = std::move(sizes);
   out["growth"] = growth_section(g, "metrics", kGrowthMetrics);
   out["timing_growth"] = growth_section(g, "timings", kGrowthTimings);
+  // Build time against the fragments made: the heuristic's cost per unit of output, which the
+  // scene's density does not change.
+  out["timing_growth_vs_fragments"] = {{"build_cpu_seconds", growth(g, "timings", "build_cpu_seconds", true)}};
   return out;
 }
 

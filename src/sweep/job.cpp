@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <set>
 
 #include "catalog.h"
@@ -121,13 +122,36 @@ void assign_key(Job& job) {
   job.key = h.hex();
 }
 
+namespace {
+
+// The content hash of a job's scene, generated once per process: sizes are nominal, and a generator
+// may build the same scene at several (architecture's 136-polygon building at n = 30, 100 and 300).
+const std::string& scene_hash(const Job& job) {
+  static std::map<std::string, std::string> hashes;
+  const std::string key = job.scene + " " + scene_params(job).canonical();
+  auto it = hashes.find(key);
+  if (it == hashes.end()) it = hashes.emplace(key, content_hash(make_scene(job.scene, job.scene_params))).first;
+  return it->second;
+}
+
+// What a run measures, apart from the nominal size: two jobs alike in all of it are one run.
+std::string run_identity(const Job& job) {
+  return scene_hash(job) + " " + job.scene + " " + job.heuristic + " " + heuristic_params(job).canonical() + " " +
+         shape_name(job.shape) + " " + std::to_string(job.seed) + " " + std::to_string(job.validation_views) +
+         (job.incremental ? " incremental" : "");
+}
+
+}  // namespace
+
 std::vector<Job> expand(const Suite& suite) {
   std::vector<Job> all;
   for (const auto& block : suite.blocks) expand_block(block, all);
+  // Smallest nominal size first, so a scene built at several sizes runs once, at the smallest.
+  std::stable_sort(all.begin(), all.end(), [](const Job& a, const Job& b) { return a.n < b.n; });
   std::vector<Job> jobs;
   std::set<std::string> seen;
   for (auto& j : all)
-    if (seen.insert(j.key).second) jobs.push_back(std::move(j));
+    if (seen.insert(run_identity(j)).second) jobs.push_back(std::move(j));
   std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) {
     return a.n != b.n ? a.n > b.n : a.key < b.key;
   });
@@ -168,6 +192,7 @@ nlohmann::json job_identity(const Job& job) {
   command += " --seed " + std::to_string(job.seed) + build_arguments(job) + " --shape " + shape_name(job.shape);
   return {{"scene", job.scene},
           {"scene_params", scene_params(job).to_json()},
+          {"constant_density", find_generator(job.scene).constant_density},
           {"heuristic", job.heuristic},
           {"heuristic_params", heuristic_params(job).to_json()},
           {"build", job.incremental ? "incremental" : "recursive"},

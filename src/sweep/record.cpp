@@ -6,8 +6,8 @@ namespace bsp::sweep {
 
 namespace {
 
-constexpr std::array<std::string_view, 4> kNonDeterministicKeys = {"shards", "timings", "timing_growth",
-                                                                   "calibration_seconds"};
+constexpr std::array<std::string_view, 5> kNonDeterministicKeys = {"shards", "timings", "timing_growth",
+                                                                   "timing_growth_vs_fragments", "calibration_seconds"};
 
 bool non_deterministic(const std::string& key) {
   for (auto k : kNonDeterministicKeys)

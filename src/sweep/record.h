@@ -44,8 +44,8 @@ std::string_view timing_field_name(TimingKind kind);
 void split_timings(nlohmann::json& from, nlohmann::json& timings, const std::string& prefix);
 
 // The report without anything that depends on when, where or how fast it ran: shard sections,
-// environments, calibrations and timings (the keys "shards", "timings", "timing_growth" and
-// "calibration_seconds" at any depth). Two sweeps of one suite agree on it exactly.
+// environments, calibrations and timings (the keys "shards", "timings", "timing_growth",
+// "timing_growth_vs_fragments" and "calibration_seconds" at any depth). Two sweeps of one suite agree on it exactly.
 nlohmann::json deterministic_view(const nlohmann::json& report);
 
 }  // namespace bsp::sweep
