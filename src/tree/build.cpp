@@ -189,6 +189,7 @@ Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildO
     build_incremental(tree, store, std::move(ids), splitter, options);
   else
     RecursiveBuilder(tree, store, splitter).run(std::move(ids));
+  tree.freeze();
   tree.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;
 }

@@ -59,21 +59,21 @@ template <class Emit, class Rule>
 TraversalCounters walk(const Tree& tree, const Vec3& eye, Order order, Emit& emit, Rule&& rule) {
   TraversalCounters c;
   if (tree.empty()) return c;
-  struct Step {
-    std::uint32_t node;
-    bool emit_only;  // the node's subtrees are already scheduled; only its fragments remain
-  };
-  std::vector<Step> stack{{0, false}};
+  // A stack entry is a node index, with kEmitOnly set once the node's subtrees are scheduled and
+  // only its own fragments remain: 4 bytes an entry, so the stack stays in L1 however deep the tree.
+  constexpr std::uint32_t kEmitOnly = 0x80000000u;
+  std::vector<std::uint32_t> stack;
+  stack.reserve(64);
+  stack.push_back(0);
   const double eps = tree.tol.plane_eps;
+  const Node* nodes = tree.nodes.data();
   while (!stack.empty()) {
-    const Step step = stack.back();
+    const std::uint32_t step = stack.back();
     stack.pop_back();
-    const Node& node = tree.nodes[step.node];
-    if (step.emit_only) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-        ++c.fragments_emitted;
-        emit(i);
-      }
+    const Node& node = nodes[step & ~kEmitOnly];
+    if (step & kEmitOnly) {
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) emit(i);
+      c.fragments_emitted += node.count;
       continue;
     }
     ++c.nodes_visited;
@@ -85,7 +85,7 @@ TraversalCounters walk(const Tree& tree, const Vec3& eye, Order order, Emit& emi
     const Visit visit = rule(plane, c);
     if (visit != Visit::Both) {
       const std::uint32_t only = visit == Visit::FrontOnly ? node.front : node.back;
-      if (only != kNull) stack.push_back({only, false});
+      if (only != kNull) stack.push_back(only);
       continue;
     }
     ++c.plane_evals;
@@ -94,9 +94,9 @@ TraversalCounters walk(const Tree& tree, const Vec3& eye, Order order, Emit& emi
     const bool back_first = eye_in_front == (order == Order::BackToFront);
     const std::uint32_t first = back_first ? node.back : node.front;
     const std::uint32_t last = back_first ? node.front : node.back;
-    if (last != kNull) stack.push_back({last, false});
-    stack.push_back({step.node, true});
-    if (first != kNull) stack.push_back({first, false});
+    if (last != kNull) stack.push_back(last);
+    if (node.count > 0) stack.push_back(step | kEmitOnly);
+    if (first != kNull) stack.push_back(first);
   }
   return c;
 }

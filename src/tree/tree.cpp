@@ -9,4 +9,18 @@ std::size_t Tree::bytes() const {
   return total;
 }
 
+void Tree::freeze() {
+  PlanePool renumbered;
+  std::vector<std::uint32_t> pair(planes.size() / 2, kNull);  // old pair -> new pair's even index
+  const auto remap = [&](std::uint32_t& p) {
+    std::uint32_t& to = pair[p >> 1];
+    if (to == kNull) to = renumbered.add(planes[p & ~1u]);
+    p = to | (p & 1u);
+  };
+  for (Node& n : nodes)
+    if (n.plane != kNull) remap(n.plane);
+  for (std::uint32_t& p : fragment_plane) remap(p);
+  planes = std::move(renumbered);
+}
+
 }  // namespace bsp

@@ -60,6 +60,11 @@ struct Tree {
   BuildStats stats;
 
   bool empty() const { return nodes.empty(); }
+  // The last step of every build: renumbers the plane pool in the order nodes use their planes, so
+  // a traversal (which visits nodes in near their stored order) reads the pool front to back
+  // instead of at random; planes no node or fragment uses are dropped. Orientation and sharing are
+  // kept: a node and a fragment on one plane still have indices equal up to the low bit.
+  void freeze();
   // The bytes of what the tree stores (sizes, not capacities), so the count is the same with any
   // standard library's growth policy and can be compared exactly.
   std::size_t bytes() const;
