@@ -114,6 +114,40 @@ TEST(ConvexPolytope, ClippingByAPlaneOutsideKeepsAllOrNothing) {
   EXPECT_TRUE(cube.clipped(Plane::through({0, 0, 1}, {0, 0, 2}), 1e-12).empty());
 }
 
+// measure_split gives what building both parts with clipped() and measuring them gives: on seeded
+// random cells (a box cut by up to 8 random planes) and random planes through them, and where the
+// plane misses the cell, touches it at a face, or passes through its vertices.
+TEST(ConvexPolytope, MeasuringASplitEqualsMeasuringBothClippedParts) {
+  Rng rng(17);
+  const auto random_unit = [&] { return normalize(Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)}); };
+  const auto random_point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()}; };
+  const double eps = 1e-12;
+  int checked = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    ConvexPolytope cell = ConvexPolytope::box({{0, 0, 0}, {1, 1, 1}});
+    const int cuts = trial % 9;
+    for (int c = 0; c < cuts; ++c) {
+      const ConvexPolytope next = cell.clipped(Plane::through(random_unit(), random_point()), eps);
+      if (next.volume() > 1e-3) cell = next;
+    }
+    std::vector<Plane> planes = {Plane::through(random_unit(), random_point()), Plane::through({0, 0, 1}, {0, 0, 0}),
+                                 Plane::through({0, 0, -1}, {0, 0, 2})};
+    const Vec3 corner = cell.faces().front().verts.front().p;
+    planes.push_back(Plane::through(random_unit(), corner));
+    for (const Plane& p : planes) {
+      const auto m = cell.measure_split(p, eps);
+      const ConvexPolytope front = cell.clipped(p, eps), back = cell.clipped(p.flipped(), eps);
+      const double scale = cell.surface_area();
+      EXPECT_NEAR(m.front_volume, front.volume(), 1e-9) << trial;
+      EXPECT_NEAR(m.back_volume, back.volume(), 1e-9) << trial;
+      EXPECT_NEAR(m.front_area, front.surface_area(), 1e-9 * scale) << trial;
+      EXPECT_NEAR(m.back_area, back.surface_area(), 1e-9 * scale) << trial;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 1200);
+}
+
 TEST(Split, AdjacentVerticesWithinToleranceDoNotMakeThePartsOverlap) {
   // A square tilted so its vertices lie at +2, +0.5, -0.5, -2 eps from the plane: it spans the plane,
   // and the two middle vertices are within eps of it. The parts must add up to the square.

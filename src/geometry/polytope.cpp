@@ -80,6 +80,85 @@ ConvexPolytope ConvexPolytope::clipped(const Plane& keep, double eps) const {
   return out;
 }
 
+namespace {
+
+// Newell's normal (twice the vector area) of a polygon fed one vertex at a time, and one of its
+// points, relative to an origin `o`.
+struct NewellSum {
+  Vec3 o, first, prev, sum, point;
+  int count = 0;
+
+  void add(const Vec3& p) {
+    const Vec3 q = p - o;
+    if (count++ == 0) {
+      first = point = q;
+    } else {
+      sum += cross(prev, q);
+    }
+    prev = q;
+  }
+  Vec3 closed() const { return count > 2 ? sum + cross(prev, first) : Vec3{}; }
+};
+
+}  // namespace
+
+// Per face, the parts in front of and behind the plane (Sutherland–Hodgman on its vertex loop)
+// give their Newell normals N. With the origin on the plane, the cut face adds nothing to
+// sum(N · point) / 6, the volume; and a closed surface's normals sum to zero, so the cut face's
+// is minus the sum over the other faces of that side.
+// A face lying on the plane (every vertex within eps) is left to the cut face: it bounds the side its
+// outward normal points away from, where the closure counts it, and touches the other only along
+// its edges. When no vertex lies beyond eps on one side, that side is empty, as in clipped().
+ConvexPolytope::SplitMeasure ConvexPolytope::measure_split(const Plane& plane, double eps) const {
+  // Each vertex's distance, snapped to 0 within eps, computed once: faces_ in order, vertex by vertex.
+  thread_local std::vector<double> dist;
+  dist.clear();
+  bool any_front = false, any_back = false;
+  for (const auto& f : faces_)
+    for (const auto& v : f.verts) {
+      double d = plane.distance(v.p);
+      if (std::abs(d) <= eps) d = 0;
+      any_front |= d > 0;
+      any_back |= d < 0;
+      dist.push_back(d);
+    }
+  if (!any_back) return {volume(), 0.0, surface_area(), 0.0};
+  if (!any_front) return {0.0, volume(), 0.0, surface_area()};
+  const Vec3 o = plane.n * -plane.d;
+  Vec3 front_total, back_total;
+  SplitMeasure m;
+  const double* d = dist.data();
+  for (const auto& f : faces_) {
+    const std::size_t k = f.verts.size();
+    const double* fd = d;
+    d += k;
+    if (std::all_of(fd, fd + k, [](double x) { return x == 0; })) continue;
+    NewellSum front{o}, back{o};
+    for (std::size_t i = 0; i < k; ++i) {
+      const std::size_t j = i + 1 == k ? 0 : i + 1;
+      const Vec3& a = f.verts[i].p;
+      const double da = fd[i], db = fd[j];
+      if (da >= 0) front.add(a);
+      if (da <= 0) back.add(a);
+      if ((da > 0 && db < 0) || (da < 0 && db > 0)) {
+        const Vec3 x = a + (f.verts[j].p - a) * (da / (da - db));
+        front.add(x);
+        back.add(x);
+      }
+    }
+    const Vec3 nf = front.closed(), nb = back.closed();
+    front_total += nf;
+    back_total += nb;
+    m.front_volume += dot(nf, front.point) / 6.0;
+    m.back_volume += dot(nb, back.point) / 6.0;
+    m.front_area += 0.5 * length(nf);
+    m.back_area += 0.5 * length(nb);
+  }
+  m.front_area += 0.5 * length(front_total);
+  m.back_area += 0.5 * length(back_total);
+  return m;
+}
+
 double ConvexPolytope::volume() const {
   double v = 0;
   for (const auto& f : faces_) v += dot(newell_normal(f), f.verts.front().p);

@@ -22,6 +22,15 @@ class ConvexPolytope {
   // The part in front of or on the plane (distance >= 0); eps is the on-plane tolerance.
   ConvexPolytope clipped(const Plane& keep_front, double eps) const;
 
+  // The two parts on either side of a plane, measured without building them (one pass over the
+  // faces, no allocation): what Naylor's cost model needs of every candidate. Vertices within eps
+  // of the plane count as on it. Surface areas include the cut face on both sides.
+  struct SplitMeasure {
+    double front_volume = 0, back_volume = 0;
+    double front_area = 0, back_area = 0;
+  };
+  SplitMeasure measure_split(const Plane& plane, double eps) const;
+
   bool empty() const { return faces_.empty(); }
   double volume() const;        // divergence theorem: (1/3) sum of area * (n . p)
   double surface_area() const;

@@ -13,10 +13,10 @@
 // Cells are exact: the scene box enlarged by `margin` (Box::enlarged, the root cell of the
 // expected-cost metric, metrics/expected_cost.h, so at equal margins this greedily lowers what that
 // metric measures), cut by the planes on the path from the root (ctx.cell_planes), each
-// candidate's children by one more clip. The previous node's cell is cached, and the build visits
-// a child right after its parent, so most cells cost one clip; after a leaf the cell is rebuilt
-// from the box in O(depth) clips. Cost per node: O(m log m) + O(k·s) (s = sample, or m)
-// classifications + k clips (2k for model = area) of a cell with O(depth) faces.
+// candidate's children measured in one pass over the cell's faces (ConvexPolytope::measure_split).
+// The cells along the previous node's path are kept, and the build is depth-first, so a node's
+// cell costs one clip of its parent's. Cost per node: O(m log m) + O(k·s) (s = sample, or m)
+// classifications + k measures and one clip of a cell with O(depth) faces.
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -61,7 +61,7 @@ class NaylorSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     update_cell(ctx);
-    const double whole = measure(cell_);
+    const double whole = measure(cells_.back());
     const auto candidates = candidate_fragments(ctx, s_.candidates, rng_);
     const SideCounter count(ctx, s_.sample, rng_);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [&](std::uint32_t id, const SideCounts& c) {
@@ -76,14 +76,12 @@ class NaylorSplitter final : public Splitter {
     return s_.model == Model::Volume ? cell.volume() : cell.surface_area();
   }
 
-  // P⁺ and P⁻ of a candidate plane. The two children's volumes add up to the cell's, so the volume
-  // model needs one clip; surface areas do not add up (the cut face counts on both sides).
+  // P⁺ and P⁻ of a candidate plane, from one pass over the cell's faces (no child polytope is built).
   std::pair<double, double> probabilities(const SplitContext& ctx, const Plane& p, double whole) const {
     if (!(whole > 0)) return {kEvenProbability, kEvenProbability};
-    const double eps = ctx.tol.plane_eps;
-    const double front = measure(cell_.clipped(p, eps)) / whole;
-    if (s_.model == Model::Volume) return {front, 1.0 - front};
-    return {front, measure(cell_.clipped(p.flipped(), eps)) / whole};
+    const ConvexPolytope::SplitMeasure m = cells_.back().measure_split(p, ctx.tol.plane_eps);
+    if (s_.model == Model::Volume) return {m.front_volume / whole, m.back_volume / whole};
+    return {m.front_area / whole, m.back_area / whole};
   }
 
   // f(n), the cost charged for a child holding n fragments. Naylor's recursion wants the children's
@@ -103,24 +101,25 @@ class NaylorSplitter final : public Splitter {
     return x;
   }
 
-  // Brings cell_ to the node's cell: one clip when the node is a child of the previous one,
-  // otherwise a rebuild from the enlarged scene box.
+  // Brings cells_.back() to the node's cell. cells_ holds the cells along the previous node's path
+  // (cells_[i] cut by its first i planes), so a node clips only the planes past the path it shares
+  // with the previous one: one clip for a child of the previous node, and one for the back child of an
+  // ancestor that the depth-first build comes back to, instead of O(depth) from the box.
   void update_cell(const SplitContext& ctx) {
     const auto& want = ctx.cell_planes;
-    const bool extends = want.size() == path_.size() + 1 && std::equal(path_.begin(), path_.end(), want.begin());
-    if (extends) {
-      cell_ = cell_.clipped(ctx.planes[want.back()], ctx.tol.plane_eps);
-    } else {
-      cell_ = ConvexPolytope::box(ctx.scene_box.enlarged(s_.margin));
-      for (auto plane : want) cell_ = cell_.clipped(ctx.planes[plane], ctx.tol.plane_eps);
-    }
+    std::size_t shared = 0;
+    while (shared < want.size() && shared < path_.size() && want[shared] == path_[shared]) ++shared;
+    if (cells_.empty()) cells_.push_back(ConvexPolytope::box(ctx.scene_box.enlarged(s_.margin)));
+    cells_.resize(shared + 1);
+    for (std::size_t i = shared; i < want.size(); ++i)
+      cells_.push_back(cells_.back().clipped(ctx.planes[want[i]], ctx.tol.plane_eps));
     path_.assign(want.begin(), want.end());
   }
 
   NaylorSettings s_;
   Rng rng_;
-  std::vector<std::uint32_t> path_;  // the planes cell_ was cut by
-  ConvexPolytope cell_;
+  std::vector<std::uint32_t> path_;     // the planes the previous node's cell was cut by
+  std::vector<ConvexPolytope> cells_;  // cells_[i]: the root cell cut by path_[0, i)
 };
 
 }  // namespace
