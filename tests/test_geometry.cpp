@@ -87,6 +87,11 @@ TEST(PlanePool, StoresEachPlaneWithItsFlip) {
   EXPECT_TRUE(PlanePool::coplanar(a, PlanePool::flip(a)));
   const auto b = pool.add(Plane::through({0, 0, 1}, {0, 0, 3}));
   EXPECT_FALSE(PlanePool::coplanar(a, b));
+  // The flip is read as the exact negation, and only one plane per pair is stored.
+  EXPECT_EQ(pool[a], p);
+  EXPECT_EQ(pool[PlanePool::flip(a)], p.flipped());
+  EXPECT_EQ(pool.size(), 4u);
+  EXPECT_EQ(pool.bytes(), 2 * sizeof(Plane));
 }
 
 TEST(ConvexPolytope, BoxVolumeAndArea) {

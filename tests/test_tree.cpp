@@ -141,7 +141,8 @@ TEST(DegenerateChain, IncrementalInsertionMakesTheSameChainWithoutRecursion) {
 TEST(TreeBytes, CountSizesNotCapacities) {
   const Scene scene = make_scene("random-triangles", {{"n", "200"}});
   const Tree tree = build(scene.polygons, "first");
-  std::size_t expected = tree.nodes.size() * sizeof(Node) + tree.planes.size() * sizeof(Plane) +
+  // The pool stores one plane per pair of indices (a plane and its flip).
+  std::size_t expected = tree.nodes.size() * sizeof(Node) + tree.planes.size() / 2 * sizeof(Plane) +
                          tree.fragment_plane.size() * sizeof(std::uint32_t) + tree.fragments.size() * sizeof(Polygon);
   for (const auto& f : tree.fragments) expected += f.verts.size() * sizeof(Vertex);
   EXPECT_EQ(tree.bytes(), expected);

@@ -20,9 +20,8 @@ std::uint32_t PlanePool::add(const Plane& p) {
   if (auto it = index_.find(key); it != index_.end()) return it->second;
   const Key flipped{-p.n.x, -p.n.y, -p.n.z, -p.d};
   if (auto it = index_.find(flipped); it != index_.end()) return flip(it->second);
-  const auto i = static_cast<std::uint32_t>(planes_.size());
+  const auto i = static_cast<std::uint32_t>(2 * planes_.size());
   planes_.push_back(p);
-  planes_.push_back(p.flipped());
   index_.emplace(key, i);
   return i;
 }
