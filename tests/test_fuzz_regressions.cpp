@@ -96,6 +96,22 @@ TEST_F(FuzzFindings, OffTexturesColoursAndIndicesCgalCannotRead) {
 }
 
 // CGAL's PLY reader dereferences a null pointer when a vertex coordinate is not float or double.
+// CGAL reads a line's numbers with `stream >> double`, which fails on a run like "05e" (strtod would
+// read 5 of it) and reads "1-2" as two numbers. A face line "0 05evr" after a face with a colour
+// index had, to CGAL, no colour, and it read one past the end of the line (the mesh_reader fuzzer,
+// after 865,301 runs; the file below is its input).
+TEST_F(FuzzFindings, OffNumbersReadAsTheStreamReadsThem) {
+  const std::string head = "COFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 4\n";
+  expect_mesh_error("cut_exponent.off", head + "3 0 2 1 05evr\n", "face 1 has a colour CGAL cannot read");
+  expect_mesh_error("joined_signs.off", head + "3 0 2 1 1-2 3\n", "face 1 has a colour CGAL cannot read");
+  EXPECT_EQ(bsp::read_mesh(write("one_index.off", head + "3 0 2 1 05e1\n")).polygons.size(), 2u);
+  using namespace std::string_literals;  // the input holds NUL bytes
+  const std::string found = "COFF*\n#0\xe0\xf5\x02\x00\xd2\xd6  11F\n# c\n# c\n#c\n#\n0 04 0\n"
+                            "0 \xff\xff\xff\xff\x00\x00\x00\x04#\n0 0 c\n#5 055c'\n#\n0 05OFF\n# c\n\n"
+                            "0 05evrepzv\x92\x00\x00" "0 c\x9c\x9c\n# c\n #\"c\na"s;
+  expect_mesh_error("fuzzer.off", found, "face 3 has a colour CGAL cannot read");
+}
+
 TEST_F(FuzzFindings, PlyVertexCoordinateOfAnIntegerTypeOrAList) {
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\n";
   const std::string rest = "property float y\nproperty float z\nelement face 1\n"

@@ -6,7 +6,6 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <set>
@@ -109,20 +108,37 @@ std::optional<OffHeader> off_keyword(std::string_view k) {
   return h;
 }
 
-// The numbers of a vertex or face line as CGAL reads them (`stream >> double` until one fails,
-// after cutting the line at '#'): digits, signs, points and exponents, no hex, inf or nan.
+// The numbers of a vertex or face line as CGAL reads them: after cutting the line at '#',
+// `stream >> double` until one fails, which is libstdc++'s num_get: skip whitespace, then take the
+// longest run that fits [sign] digits [. digits] [e|E [sign] digits] (a sign only first or right
+// after the exponent letter, one point, one exponent letter and that only after a digit), and fail
+// unless strtod reads all of that run to a finite number. So "1-2" is two numbers, and "05evr"
+// none: its run "05e" is no number (a fuzzer finding: strtod reads 5 there, so a face line that
+// to CGAL had no colour after a coloured one passed the colour check, and CGAL read one past the
+// end of the line).
 std::vector<double> off_numbers(std::string_view line) {
   line = line.substr(0, line.find('#'));
   std::vector<double> out;
   for (std::size_t pos = 0;;) {
     while (pos < line.size() && std::isspace(static_cast<unsigned char>(line[pos]))) ++pos;
-    const std::size_t end = std::min(line.find_first_not_of("0123456789+-.eE", pos), line.size());
-    const std::string text(line.substr(pos, end - pos));
+    const std::size_t start = pos;
+    const auto sign_at = [&](std::size_t i) { return i < line.size() && (line[i] == '+' || line[i] == '-'); };
+    if (sign_at(pos)) ++pos;
+    bool digits = false, point = false, exponent = false;
+    for (; pos < line.size(); ++pos) {
+      const char c = line[pos];
+      if (std::isdigit(static_cast<unsigned char>(c))) digits = true;
+      else if (c == '.' && !point && !exponent) point = true;
+      else if ((c == 'e' || c == 'E') && digits && !exponent) {
+        exponent = true;
+        if (sign_at(pos + 1)) ++pos;
+      } else break;
+    }
+    const std::string run(line.substr(start, pos - start));
     char* stop = nullptr;
-    const double x = std::strtod(text.c_str(), &stop);
-    if (stop == text.c_str() || !std::isfinite(x)) return out;  // the stream fails on overflow too
+    const double x = std::strtod(run.c_str(), &stop);
+    if (run.empty() || *stop != '\0' || !std::isfinite(x)) return out;
     out.push_back(x);
-    pos += static_cast<std::size_t>(stop - text.c_str());
   }
 }
 
