@@ -121,6 +121,20 @@ TEST_F(FuzzFindings, PlyVertexCoordinateOfAnIntegerTypeOrAList) {
   expect_mesh_error("list.ply", header + "property list uchar float x\n" + rest, "coordinate x is a list");
 }
 
+// CGAL reads a halfedge element's source and target as uint32 and dereferences a null pointer when
+// the first property of that name has another type (the mesh_reader fuzzer, after 915,981 runs).
+TEST_F(FuzzFindings, PlyHalfedgeSourceOrTargetOfAnotherType) {
+  const std::string mesh = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                           "property float z\nelement face 1\nproperty list uchar int vertex_indices\n";
+  const std::string data = "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n0 1\n";
+  const auto halfedge = [&](const std::string& source_type) {
+    return mesh + "element halfedge 1\nproperty " + source_type + " source\nproperty uint target\n" + data;
+  };
+  EXPECT_EQ(bsp::read_mesh(write("uint.ply", halfedge("uint"))).polygons.size(), 1u);
+  expect_mesh_error("float_source.ply", halfedge("float"), "PLY halfedge source is float");
+  expect_mesh_error("list_source.ply", halfedge("list uchar uint"), "PLY halfedge source is a list");
+}
+
 // CGAL takes the format from line 2 whatever its words, so "element" there is no element, and a
 // later property line indexed the last element of an empty list.
 TEST_F(FuzzFindings, PlyElementOnTheFormatLineIsNoElement) {

@@ -242,6 +242,7 @@ struct PlyElement {
   std::string name;
   u64 count = 0;
   std::vector<PlyProperty> properties;
+  std::set<std::string> typed;  // names whose first property check_ply_typed_property has seen
 };
 
 // Bytes of a PLY scalar type, sign in `is_signed`; 0 for a type CGAL does not know (it skips it).
@@ -256,14 +257,20 @@ int ply_type_size(std::string_view t, bool& is_signed) {
 
 bool is_real(std::string_view type) { return type.find("float") == 0 || type == "double"; }
 
-// CGAL reads a vertex's x, y and z as floating point and dereferences a null pointer when one has
-// another type (PLY_element::assign), so those must be float or double.
-void check_ply_coordinate(const std::string& path, const PlyElement& e, std::string_view name, std::string_view type,
-                          bool list) {
-  if ((e.name != "vertex" && e.name != "vertices") || (name != "x" && name != "y" && name != "z")) return;
-  if (list || !is_real(type))
-    fail(path, "PLY vertex coordinate " + std::string(name) + " is " + (list ? "a list" : std::string(type)) +
-                   "; coordinates must be float or double");
+// CGAL reads some properties as one type and dereferences a null pointer when the first property of
+// that name has another (PLY_element::assign): a vertex's x, y and z as floating point, and a
+// halfedge's source and target as uint32 (a fuzzer finding). Those must have the type CGAL reads.
+void check_ply_typed_property(const std::string& path, PlyElement& e, std::string_view name,
+                              std::string_view type, bool list) {
+  const bool vertex = e.name == "vertex" || e.name == "vertices";
+  const bool coordinate = vertex && (name == "x" || name == "y" || name == "z");
+  const bool index = e.name == "halfedge" && (name == "source" || name == "target");
+  if (!(coordinate || index) || !e.typed.insert(std::string(name)).second) return;
+  const std::string what = list ? "a list" : std::string(type);
+  if (coordinate && (list || !is_real(type)))
+    fail(path, "PLY vertex coordinate " + std::string(name) + " is " + what + "; coordinates must be float or double");
+  if (index && (list || (type != "uint" && type != "uint32")))
+    fail(path, "PLY halfedge " + std::string(name) + " is " + what + "; it must be uint or uint32");
 }
 
 // As CGAL's header reader: a property of an unknown type, or a list whose length type is not an
@@ -282,12 +289,12 @@ void add_ply_property(const std::string& path, Text& words, std::vector<PlyEleme
   }
   p.size = ply_type_size(type, is_signed);
   if (p.size == 0) return;
-  check_ply_coordinate(path, elements.back(), words.token(), type, list);
+  check_ply_typed_property(path, elements.back(), words.token(), type, list);
   elements.back().properties.push_back(p);
 }
 
 void add_ply_element(const std::string& path, Text& words, std::vector<PlyElement>& elements) {
-  PlyElement e{std::string(words.token()), 0, {}};
+  PlyElement e{std::string(words.token()), 0, {}, {}};
   const std::string_view count = words.token();
   const auto n = to_integer(count);
   if (!n || *n < 0) fail(path, "element " + e.name + " has count '" + std::string(count) + "', not a count");
