@@ -11,6 +11,7 @@
 // results/runs/<binary>-<UTC time>.json in the source tree (git ignores results/runs/).
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -54,6 +55,11 @@ inline constexpr std::uint32_t kViews = 8;
 void bm_build(benchmark::State& state, const Scene* s, std::string h);
 // Full back-to-front traversal from the kViews metric views; items = fragments emitted.
 void bm_traverse(benchmark::State& state, const Scene* s, std::string h);
+
+// Seconds of wall time since `start` (steady clock), for the benchmarks' own in-run medians.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // Adds the git revision to the context and runs the benchmarks; returns main's exit code.
 int run_benchmarks(int argc, char** argv, const std::string& binary);

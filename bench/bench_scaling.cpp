@@ -15,12 +15,12 @@
 // many others at every N and the growth measured is the heuristic's, not the clutter's.
 // Select with --bsp_scenes, --bsp_heuristics, --bsp_sizes (bench_common.h), e.g.
 //   build/bench/bspbench_bench_scaling --bsp_heuristics=crystal --bsp_sizes=1000000
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
 
 #include "bench_common.h"
+#include "metrics/statistics.h"
 #include "metrics/traversal_cost.h"
 #include "references.h"
 #include "split/registry.h"
@@ -37,14 +37,6 @@ constexpr int kReferenceRepeats = 5;  // timed runs of each reference; their med
 constexpr int kBuildThreads = 1;      // the build is single-threaded, so the reference is too
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
 
 ParamAssignments scene_params(const std::string& name, std::uint64_t n) {
   ParamAssignments p = {{"n", std::to_string(n)}, {"seed", std::to_string(kSeed)}};

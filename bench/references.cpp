@@ -11,19 +11,14 @@
 #include <utility>
 #include <vector>
 
+#include "bench_common.h"
+#include "metrics/statistics.h"
+
 namespace bsp::bench {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // The polygons fan-triangulated into float vertex and index arrays, as a renderer would hand them
 // to Embree.
