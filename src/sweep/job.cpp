@@ -109,18 +109,26 @@ HeuristicVariant parse_heuristic_variant(const std::string& label) {
   return v;
 }
 
-void assign_key(Job& job) {
+namespace {
+
+// Everything that decides a run's results, with the scene given as `scene` (its resolved
+// parameters for the key, its content for run_identity).
+std::string run_hash(const Job& job, const std::string& scene) {
   Hasher h;
   h.add_string(job.scene);
-  h.add_string(scene_params(job).canonical());
+  h.add_string(scene);
   h.add_string(job.heuristic);
   h.add_string(heuristic_params(job).canonical());
   h.add_string(shape_name(job.shape));
   h.add_u64(job.seed);
   h.add_u64(job.validation_views);
   if (job.incremental) h.add_string("incremental shuffled");
-  job.key = h.hex();
+  return h.hex();
 }
+
+}  // namespace
+
+void assign_key(Job& job) { job.key = run_hash(job, scene_params(job).canonical()); }
 
 namespace {
 
@@ -135,11 +143,7 @@ const std::string& scene_hash(const Job& job) {
 }
 
 // What a run measures, apart from the nominal size: two jobs alike in all of it are one run.
-std::string run_identity(const Job& job) {
-  return scene_hash(job) + " " + job.scene + " " + job.heuristic + " " + heuristic_params(job).canonical() + " " +
-         shape_name(job.shape) + " " + std::to_string(job.seed) + " " + std::to_string(job.validation_views) +
-         (job.incremental ? " incremental" : "");
-}
+std::string run_identity(const Job& job) { return run_hash(job, scene_hash(job)); }
 
 }  // namespace
 
