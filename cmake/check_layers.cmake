@@ -1,7 +1,7 @@
 cmake_minimum_required(VERSION 3.25)
 # Checks that no source file includes a header of a higher layer (src/CMakeLists.txt gives the
 # layers). Run as `cmake -DROOT=<dir holding src/ and generators/> -P check_layers.cmake`; prints
-# every offending include as FILE:LINE: ... and fails when there is one.
+# every offending include as "FILE: layer L includes from M, above it: LINE" and fails when there is one.
 set(allowed_common common)
 set(allowed_geometry common geometry)
 set(allowed_scene common geometry scene)
