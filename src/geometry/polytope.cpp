@@ -133,7 +133,7 @@ ConvexPolytope::SplitMeasure ConvexPolytope::measure_split(const Plane& plane, d
     const double* fd = d;
     d += k;
     if (std::all_of(fd, fd + k, [](double x) { return x == 0; })) continue;
-    NewellSum front{o}, back{o};
+    NewellSum front{o, {}, {}, {}, {}}, back{o, {}, {}, {}, {}};
     for (std::size_t i = 0; i < k; ++i) {
       const std::size_t j = i + 1 == k ? 0 : i + 1;
       const Vec3& a = f.verts[i].p;
