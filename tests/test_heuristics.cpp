@@ -2,11 +2,13 @@
 // polyhedra), the orderings their weights promise, what each one's parameters accept, and the tree
 // invariants and determinism of every registered heuristic.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
@@ -108,21 +110,27 @@ std::vector<std::string> heuristic_names(bool autopartition_only) {
   return names;
 }
 
+// Bit for bit: the same nodes, plane indices, pooled planes, fragments and build counts.
 bool identical(const Tree& a, const Tree& b) {
-  if (a.nodes.size() != b.nodes.size() || a.fragments.size() != b.fragments.size()) return false;
+  if (a.nodes.size() != b.nodes.size() || a.fragments.size() != b.fragments.size() ||
+      a.planes.size() != b.planes.size() || a.fragment_plane != b.fragment_plane)
+    return false;
   for (std::size_t i = 0; i < a.nodes.size(); ++i) {
     const Node &x = a.nodes[i], &y = b.nodes[i];
-    if (x.front != y.front || x.back != y.back || x.first != y.first || x.count != y.count) return false;
-    if ((x.plane == kNull) != (y.plane == kNull)) return false;
-    if (x.plane != kNull && !(a.planes[x.plane] == b.planes[y.plane])) return false;
+    if (x.front != y.front || x.back != y.back || x.first != y.first || x.count != y.count || x.plane != y.plane)
+      return false;
   }
+  for (std::uint32_t i = 0; i < a.planes.size(); ++i)
+    if (!(a.planes[i] == b.planes[i])) return false;
   for (std::size_t i = 0; i < a.fragments.size(); ++i) {
     const Polygon &p = a.fragments[i], &q = b.fragments[i];
     if (p.source != q.source || p.verts.size() != q.verts.size()) return false;
     for (std::size_t v = 0; v < p.verts.size(); ++v)
-      if (!(p.verts[v].p == q.verts[v].p)) return false;
+      if (!(p.verts[v].p == q.verts[v].p) || p.verts[v].u != q.verts[v].u || p.verts[v].v != q.verts[v].v) return false;
   }
-  return true;
+  const BuildStats &s = a.stats, &t = b.stats;
+  return s.splits == t.splits && s.dropped_input == t.dropped_input && s.dropped_slivers == t.dropped_slivers &&
+         s.dropped_area == t.dropped_area && s.input_area == t.input_area && s.fallbacks == t.fallbacks;
 }
 
 // The root's plane as the height of a z-plane (the test scenes put it there).
@@ -373,6 +381,30 @@ TEST_P(RegisteredHeuristic, SameSeedGivesTheSameTreeBitForBit) {
   const Scene scene = make_scene("random-triangles", {{"n", "300"}, {"seed", "9"}});
   EXPECT_TRUE(identical(build(scene.polygons, GetParam(), {}, Shape::Strict, 42),
                         build(scene.polygons, GetParam(), {}, Shape::Strict, 42)));
+}
+
+// Handing subtrees to tasks and running those on two threads changes nothing: the tree built with
+// many small tasks on one and on two threads equals, bit for bit, the tree built with none.
+TEST_P(RegisteredHeuristic, TasksAndThreadsLeaveTheTreeBitForBit) {
+  const int threads = omp_get_max_threads();
+  for (const char* scene_name : {"random-triangles", "architecture"}) {
+    const Scene scene = make_scene(scene_name, {{"n", "600"}, {"seed", "3"}});
+    for (Shape shape : {Shape::Strict, Shape::Coarse}) {
+      const auto splitter = make_splitter(GetParam(), {}, 7);
+      const BuildOptions none{.shape = shape, .min_task_fragments = std::numeric_limits<std::size_t>::max()};
+      const BuildOptions many{.shape = shape, .task_share = 4, .min_task_fragments = 8};
+      omp_set_num_threads(1);
+      const Tree whole = build_tree(scene.polygons, *splitter, none);
+      const Tree tasks_one_thread = build_tree(scene.polygons, *splitter, many);
+      omp_set_num_threads(2);
+      const Tree tasks_two_threads = build_tree(scene.polygons, *splitter, many);
+      EXPECT_EQ(whole.stats.tasks, 0u);
+      EXPECT_GT(tasks_one_thread.stats.tasks, 3u) << scene_name;
+      EXPECT_TRUE(identical(whole, tasks_one_thread)) << scene_name << (shape == Shape::Coarse ? " coarse" : " strict");
+      EXPECT_TRUE(identical(whole, tasks_two_threads)) << scene_name << (shape == Shape::Coarse ? " coarse" : " strict");
+    }
+  }
+  omp_set_num_threads(threads);
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, RegisteredHeuristic, ::testing::ValuesIn(heuristic_names(false)),

@@ -10,7 +10,7 @@ namespace {
 constexpr std::size_t kInitialSlots = 64;
 
 // FNV-1a over the components' bits, with -0 read as +0 so that planes equal under == hash alike.
-std::uint64_t hash(const Plane& p) {
+std::uint64_t oriented_hash(const Plane& p) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   for (double v : {p.n.x, p.n.y, p.n.z, p.d}) {
     h ^= std::bit_cast<std::uint64_t>(v == 0.0 ? 0.0 : v);
@@ -20,14 +20,20 @@ std::uint64_t hash(const Plane& p) {
   return h;
 }
 
+// The same for a plane and its flip, so one probe sequence finds a plane in either orientation.
+std::uint64_t hash(const Plane& p) { return oriented_hash(p) + oriented_hash(p.flipped()); }
+
 }  // namespace
 
 std::uint32_t PlanePool::find(const Plane& p) const {
-  if (slots_.empty()) return 0;
+  if (slots_.empty()) return kNotFound;
   const std::size_t mask = slots_.size() - 1;
+  const Plane q = p.flipped();
   for (std::size_t i = hash(p) & mask;; i = (i + 1) & mask) {
     const std::uint32_t s = slots_[i];
-    if (s == 0 || planes_[s - 1] == p) return s;
+    if (s == 0) return kNotFound;
+    if (planes_[s - 1] == p) return 2 * (s - 1);
+    if (planes_[s - 1] == q) return 2 * (s - 1) + 1;
   }
 }
 
@@ -38,19 +44,36 @@ void PlanePool::insert(std::uint32_t pair) {
   slots_[i] = pair + 1;
 }
 
-void PlanePool::grow() {
-  slots_.assign(std::max(kInitialSlots, 2 * slots_.size()), 0);
+void PlanePool::rehash(std::size_t pairs) {
+  std::size_t n = kInitialSlots;
+  while (n < 2 * pairs) n *= 2;
+  slots_.assign(n, 0);
   for (std::uint32_t pair = 0; pair < planes_.size(); ++pair) insert(pair);
+  indexed_ = planes_.size();
+}
+
+void PlanePool::reserve(std::size_t pairs) {
+  planes_.reserve(pairs);
+  if (slots_.size() < 2 * pairs) rehash(pairs);
 }
 
 std::uint32_t PlanePool::add(const Plane& p) {
-  if (const std::uint32_t s = find(p)) return 2 * (s - 1);
-  if (const std::uint32_t s = find(p.flipped())) return flip(2 * (s - 1));
+  if (indexed_ < planes_.size()) rehash(planes_.size());
+  if (const std::uint32_t i = find(p); i != kNotFound) return i;
   const auto pair = static_cast<std::uint32_t>(planes_.size());
   planes_.push_back(p);
-  if (2 * planes_.size() > slots_.size()) grow();
-  else insert(pair);
+  if (2 * planes_.size() > slots_.size()) {
+    rehash(2 * planes_.size());
+  } else {
+    insert(pair);
+    indexed_ = planes_.size();
+  }
   return 2 * pair;
+}
+
+std::uint32_t PlanePool::append_distinct(const Plane& p) {
+  planes_.push_back(p);
+  return static_cast<std::uint32_t>(2 * (planes_.size() - 1));
 }
 
 }  // namespace bsp

@@ -32,6 +32,12 @@ class PlanePool {
   static constexpr bool coplanar(std::uint32_t a, std::uint32_t b) { return (a ^ b) <= 1u; }
 
   std::uint32_t add(const Plane& p);
+  // Appends a plane known to be in neither orientation yet, as the next pair; returns its even index.
+  // The lookup table is brought up to date by the next add(), so a pool rebuilt from distinct planes
+  // (Tree::freeze) costs no hashing unless planes are added later.
+  std::uint32_t append_distinct(const Plane& p);
+  // Room for this many pairs without growing the table.
+  void reserve(std::size_t pairs);
   Plane operator[](std::uint32_t i) const {
     const Plane& p = planes_[i >> 1];
     return (i & 1u) ? p.flipped() : p;
@@ -43,12 +49,15 @@ class PlanePool {
   // Open addressing with linear probing over a power-of-two table kept at most half full: a lookup
   // touches one or two adjacent slots instead of a node-based map's scattered allocations, which
   // made pooling a million input planes a tenth of a build. A slot holds a pair number + 1; 0 is empty.
-  std::uint32_t find(const Plane& p) const;  // the pair of p itself (not its flip) + 1, or 0
+  // A plane and its flip hash alike, so one probe sequence answers for both orientations.
+  static constexpr std::uint32_t kNotFound = 0xffffffffu;
+  std::uint32_t find(const Plane& p) const;  // p's index (of either orientation), or kNotFound
   void insert(std::uint32_t pair);
-  void grow();
+  void rehash(std::size_t pairs);  // a table for at least this many pairs, holding every plane
 
   std::vector<Plane> planes_;
   std::vector<std::uint32_t> slots_;
+  std::size_t indexed_ = 0;  // planes_[0, indexed_) are in slots_
 };
 
 }  // namespace bsp

@@ -60,15 +60,21 @@ bool in_front_or_on(const Polygon& poly, const Plane& plane, double eps) {
 }
 
 double merge_close_vertices(Polygon& poly, double eps) {
-  if (poly.verts.size() < 2) return 0.0;
-  const double before = poly.verts.size() >= 3 ? area(poly) : 0.0;
-  std::vector<Vertex> kept{poly.verts.front()};
-  for (std::size_t i = 1; i < poly.verts.size(); ++i)
-    if (length(poly.verts[i].p - kept.back().p) > eps) kept.push_back(poly.verts[i]);
-  while (kept.size() > 1 && length(kept.back().p - kept.front().p) <= eps) kept.pop_back();
-  if (kept.size() == poly.verts.size()) return 0.0;
-  poly.verts = std::move(kept);
-  return before - (poly.verts.size() >= 3 ? area(poly) : 0.0);
+  auto& v = poly.verts;
+  const std::size_t k = v.size();
+  if (k < 2) return 0.0;
+  // Nothing merges unless two cyclically adjacent vertices are within eps: the common case costs
+  // one pass and no area.
+  bool close = length(v.back().p - v.front().p) <= eps;
+  for (std::size_t i = 1; i < k && !close; ++i) close = length(v[i].p - v[i - 1].p) <= eps;
+  if (!close) return 0.0;
+  const double before = k >= 3 ? area(poly) : 0.0;
+  std::size_t w = 1;  // v[0, w) kept, each more than eps from the one kept before it
+  for (std::size_t i = 1; i < k; ++i)
+    if (length(v[i].p - v[w - 1].p) > eps) v[w++] = v[i];
+  while (w > 1 && length(v[w - 1].p - v[0].p) <= eps) --w;
+  v.resize(w);
+  return before - (w >= 3 ? area(poly) : 0.0);
 }
 
 bool is_sliver(const Polygon& poly, double eps) {

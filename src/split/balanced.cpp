@@ -18,11 +18,14 @@ namespace {
 class BalancedSplitter final : public Splitter {
  public:
   BalancedSplitter(std::uint64_t candidates, std::uint64_t sample, std::uint64_t seed)
-      : candidates_(candidates), sample_(sample), rng_(seed) {}
+      : candidates_(candidates), sample_(sample), seed_(seed) {}
+
+  std::unique_ptr<Splitter> clone() const override { return std::make_unique<BalancedSplitter>(*this); }
 
   SplitChoice choose(const SplitContext& ctx) override {
-    const auto candidates = candidate_fragments(ctx, candidates_, rng_);
-    const SideCounter count(ctx, sample_, rng_);
+    Rng rng(stream_seed(seed_, ctx.node_key));
+    const auto candidates = candidate_fragments(ctx, candidates_, rng);
+    const SideCounter count(ctx, sample_, rng);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [](std::uint32_t, const SideCounts& c) {
       const auto imbalance = c.front > c.back ? c.front - c.back : c.back - c.front;
       return std::pair{imbalance, c.spanning};
@@ -30,8 +33,7 @@ class BalancedSplitter final : public Splitter {
   }
 
  private:
-  std::uint64_t candidates_, sample_;
-  Rng rng_;
+  std::uint64_t candidates_, sample_, seed_;
 };
 
 }  // namespace

@@ -10,6 +10,7 @@ namespace {
 class FirstSplitter final : public Splitter {
  public:
   SplitChoice choose(const SplitContext& ctx) override { return SplitChoice::of_fragment(ctx.ids.front()); }
+  std::unique_ptr<Splitter> clone() const override { return std::make_unique<FirstSplitter>(); }
 };
 
 }  // namespace

@@ -2,13 +2,27 @@
 
 namespace bsp {
 
-std::uint32_t FragmentStore::add(Polygon&& poly, std::uint32_t plane) {
+BoundingSphere bounding_sphere(const Polygon& poly) {
   BoundingSphere s{centroid(poly), 0.0};
   for (const auto& v : poly.verts) s.radius = std::max(s.radius, length(v.p - s.center));
+  return s;
+}
+
+std::uint32_t FragmentStore::add(Polygon&& poly, std::uint32_t plane) {
+  return add(std::move(poly), plane, bounding_sphere(poly));
+}
+
+std::uint32_t FragmentStore::add(Polygon&& poly, std::uint32_t plane, const BoundingSphere& s) {
   polys_.push_back(std::move(poly));
   plane_.push_back(plane);
   sphere_.push_back(s);
   return static_cast<std::uint32_t>(polys_.size() - 1);
+}
+
+void FragmentStore::reserve(std::size_t n) {
+  polys_.reserve(n);
+  plane_.reserve(n);
+  sphere_.reserve(n);
 }
 
 SideCounts FragmentStore::count_sides(std::span<const std::uint32_t> ids, const Plane& p, double eps) const {

@@ -16,6 +16,9 @@ struct BoundingSphere {
   double radius = 0;
 };
 
+// Centred at the vertex average, reaching the farthest vertex.
+BoundingSphere bounding_sphere(const Polygon& poly);
+
 struct SideCounts {
   std::uint32_t front = 0, back = 0, coplanar = 0, spanning = 0;
 };
@@ -23,7 +26,10 @@ struct SideCounts {
 class FragmentStore {
  public:
   std::uint32_t add(Polygon&& poly, std::uint32_t plane);
+  // Adds a fragment whose bounding sphere is known (moved from another store).
+  std::uint32_t add(Polygon&& poly, std::uint32_t plane, const BoundingSphere& sphere);
   std::size_t size() const { return polys_.size(); }
+  void reserve(std::size_t n);
 
   const Polygon& poly(std::uint32_t id) const { return polys_[id]; }
   std::uint32_t plane(std::uint32_t id) const { return plane_[id]; }

@@ -124,6 +124,9 @@ class HalvingSplitter final : public Splitter {
       : s_(s), fallback_(std::move(fallback)) {}
 
   bool needs_cell() const override { return fallback_->needs_cell(); }
+  std::unique_ptr<Splitter> clone() const override {
+    return std::make_unique<HalvingSplitter>(s_, fallback_->clone());
+  }
 
   SplitChoice choose(const SplitContext& ctx) override {
     const Vec3 u = most_populated_orientation(ctx, s_.angle);

@@ -51,12 +51,15 @@ double relation(const SideCounts& c) {
 
 class MinRelationSplitter final : public Splitter {
  public:
-  MinRelationSplitter(const MinRelationSettings& s, std::uint64_t seed) : s_(s), rng_(seed) {}
+  MinRelationSplitter(const MinRelationSettings& s, std::uint64_t seed) : s_(s), seed_(seed) {}
+
+  std::unique_ptr<Splitter> clone() const override { return std::make_unique<MinRelationSplitter>(*this); }
 
   SplitChoice choose(const SplitContext& ctx) override {
     std::vector<Scored> scored;
-    const auto candidates = candidate_fragments(ctx, s_.candidates, rng_);
-    const SideCounter count(ctx, s_.sample, rng_);
+    Rng rng(stream_seed(seed_, ctx.node_key));
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng);
+    const SideCounter count(ctx, s_.sample, rng);
     for (auto id : candidates) {
       const SideCounts c = count(id);
       scored.push_back({id, c.spanning, relation(c)});
@@ -89,7 +92,7 @@ class MinRelationSplitter final : public Splitter {
   }
 
   MinRelationSettings s_;
-  Rng rng_;
+  std::uint64_t seed_;
 };
 
 }  // namespace

@@ -55,15 +55,17 @@ struct NaylorSettings {
 
 class NaylorSplitter final : public Splitter {
  public:
-  NaylorSplitter(const NaylorSettings& s, std::uint64_t seed) : s_(s), rng_(seed) {}
+  NaylorSplitter(const NaylorSettings& s, std::uint64_t seed) : s_(s), seed_(seed) {}
 
   bool needs_cell() const override { return true; }
+  std::unique_ptr<Splitter> clone() const override { return std::make_unique<NaylorSplitter>(*this); }
 
   SplitChoice choose(const SplitContext& ctx) override {
     update_cell(ctx);
     const double whole = measure(cells_.back());
-    const auto candidates = candidate_fragments(ctx, s_.candidates, rng_);
-    const SideCounter count(ctx, s_.sample, rng_);
+    Rng rng(stream_seed(seed_, ctx.node_key));
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng);
+    const SideCounter count(ctx, s_.sample, rng);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [&](std::uint32_t id, const SideCounts& c) {
       const auto [p_front, p_back] = probabilities(ctx, ctx.planes[ctx.frags.plane(id)], whole);
       return 1.0 + p_back * estimate(count.scale() * (c.back + c.spanning)) +
@@ -117,7 +119,7 @@ class NaylorSplitter final : public Splitter {
   }
 
   NaylorSettings s_;
-  Rng rng_;
+  std::uint64_t seed_;
   std::vector<std::uint32_t> path_;     // the planes the previous node's cell was cut by
   std::vector<ConvexPolytope> cells_;  // cells_[i]: the root cell cut by path_[0, i)
 };

@@ -11,13 +11,15 @@ namespace {
 
 class RandomSplitter final : public Splitter {
  public:
-  explicit RandomSplitter(std::uint64_t seed) : rng_(seed) {}
+  explicit RandomSplitter(std::uint64_t seed) : seed_(seed) {}
+  std::unique_ptr<Splitter> clone() const override { return std::make_unique<RandomSplitter>(*this); }
   SplitChoice choose(const SplitContext& ctx) override {
-    return SplitChoice::of_fragment(ctx.ids[rng_.below(ctx.ids.size())]);
+    Rng rng(stream_seed(seed_, ctx.node_key));
+    return SplitChoice::of_fragment(ctx.ids[rng.below(ctx.ids.size())]);
   }
 
  private:
-  Rng rng_;
+  std::uint64_t seed_;
 };
 
 }  // namespace

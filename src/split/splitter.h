@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 
+#include "common/rng.h"
 #include "geometry/plane.h"
 #include "geometry/tolerance.h"
 #include "split/fragment_store.h"
@@ -23,6 +24,15 @@ struct SplitContext {
   // intersected with the front half-space of each of these pooled planes, root first.
   std::span<const std::uint32_t> cell_planes;
   std::uint32_t depth = 1;  // of the node being made; the root has depth 1
+  // A hash of the node's path from the root (child_key). A splitter seeds any randomness it draws
+  // for this node from it, so a node's choice does not depend on which nodes were built before it
+  // or on which thread builds it.
+  std::uint64_t node_key = kRootKey;
+
+  static constexpr std::uint64_t kRootKey = 0x6b5f0a3d2c1e9f87ULL;
+  static constexpr std::uint64_t child_key(std::uint64_t parent, bool front) {
+    return splitmix64(parent ^ (front ? 0x46524f4e54ULL : 0x4241434bULL));
+  }
 };
 
 struct SplitChoice {
@@ -39,10 +49,12 @@ struct SplitChoice {
 class Splitter {
  public:
   virtual ~Splitter() = default;
-  // Called once per node with at least one fragment, in a deterministic order, so stateful
-  // splitters (seeded sampling) give the same tree on every run. Kind::None leaves the choice to
-  // the build loop's fallback.
+  // Called once per node with at least one fragment. The choice must depend only on the context
+  // (randomness seeded from ctx.node_key), never on earlier calls, so that subtrees can be built
+  // in any order on any thread. Kind::None leaves the choice to the build loop's fallback.
   virtual SplitChoice choose(const SplitContext& ctx) = 0;
+  // An independent copy for another thread: same settings and seed, its own scratch state.
+  virtual std::unique_ptr<Splitter> clone() const = 0;
   // Whether choose() reads ctx.cell_planes; computing them costs O(depth) per node.
   virtual bool needs_cell() const { return false; }
 };

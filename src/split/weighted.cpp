@@ -19,11 +19,14 @@ constexpr double kMaxWeight = 1e6;
 
 class WeightedSplitter final : public Splitter {
  public:
-  WeightedSplitter(const WeightedSettings& s, std::uint64_t seed) : s_(s), rng_(seed) {}
+  WeightedSplitter(const WeightedSettings& s, std::uint64_t seed) : s_(s), seed_(seed) {}
+
+  std::unique_ptr<Splitter> clone() const override { return std::make_unique<WeightedSplitter>(*this); }
 
   SplitChoice choose(const SplitContext& ctx) override {
-    const auto candidates = candidate_fragments(ctx, s_.candidates, rng_);
-    const SideCounter count(ctx, s_.sample, rng_);
+    Rng rng(stream_seed(seed_, ctx.node_key));
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng);
+    const SideCounter count(ctx, s_.sample, rng);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [&](std::uint32_t id, const SideCounts& c) {
       return cost(ctx.planes[ctx.frags.plane(id)], c, count.scale());
     }));
@@ -38,7 +41,7 @@ class WeightedSplitter final : public Splitter {
   }
 
   WeightedSettings s_;
-  Rng rng_;
+  std::uint64_t seed_;
 };
 
 ParamSpec weight_param(const char* name, const std::string& doc, double default_value) {

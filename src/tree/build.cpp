@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
+#include <memory>
 #include <vector>
 
 #include "common/rng.h"
@@ -18,25 +20,52 @@ struct WorkItem {
   std::uint32_t parent = kNull;
   bool front_side = true;
   std::uint32_t depth = 1;
+  std::uint64_t key = SplitContext::kRootKey;
 };
 
 struct Partition {
   std::vector<std::uint32_t> coplanar, front, back;
 };
 
+// A subtree built by a task: a tree of its own (nodes, fragments, and a plane pool holding just the
+// planes it uses), grafted under `parent` once every task is done.
+struct Task {
+  Tree tree;
+  FragmentStore store;
+  std::unique_ptr<Splitter> splitter;
+  WorkItem root;                      // ids in `store`; parent is kNull inside the task's tree
+  std::vector<std::uint32_t> prefix;  // the cell planes above the root, in tree.planes
+  // The main pool's index of each of tree.planes' pairs (of the pair's even index) that came from
+  // the main pool; pairs past its end are planes the task chose itself.
+  std::vector<std::uint32_t> main_index;
+  std::uint32_t parent = kNull;       // in the main tree
+  bool front_side = true;
+};
+
 class RecursiveBuilder {
  public:
-  RecursiveBuilder(Tree& tree, FragmentStore& store, Splitter& splitter)
-      : tree_(tree), store_(store), splitter_(splitter) {}
+  // `prefix`: the cell planes of the path above the first item, root first. `tasks`: where the main
+  // builder hands off subtrees of [min_task, max_task] fragments (BuildOptions); null inside a task,
+  // which builds everything it is given. The division depends on the input and the options only,
+  // never on the thread count, and a splitter's choice depends only on its node's context, so a
+  // subtree comes out the same whether a task or the main builder makes it.
+  RecursiveBuilder(Tree& tree, FragmentStore& store, Splitter& splitter, std::vector<std::uint32_t> prefix,
+                   std::vector<std::unique_ptr<Task>>* tasks, std::size_t min_task = 0, std::size_t max_task = 0)
+      : tree_(tree), store_(store), splitter_(splitter), prefix_(std::move(prefix)), tasks_(tasks),
+        min_task_(min_task), max_task_(max_task) {}
 
-  void run(std::vector<std::uint32_t> ids) {
-    if (ids.empty()) return;
+  void run(WorkItem first) {
+    if (first.ids.empty()) return;
     std::vector<WorkItem> stack;
-    stack.push_back({std::move(ids), kNull, true, 1});
+    stack.push_back(std::move(first));
     while (!stack.empty()) {
       WorkItem item = std::move(stack.back());
       stack.pop_back();
-      process(std::move(item), stack);
+      const std::size_t m = item.ids.size();
+      if (tasks_ && item.parent != kNull && m >= min_task_ && m <= max_task_)
+        hand_off(std::move(item));
+      else
+        process(std::move(item), stack);
     }
   }
 
@@ -56,14 +85,43 @@ class RecursiveBuilder {
     }
     Partition part = partition(std::move(item.ids), plane);
     const std::uint32_t node = make_node(plane, part.coplanar, item);
-    if (!part.back.empty()) stack.push_back({std::move(part.back), node, false, item.depth + 1});
-    if (!part.front.empty()) stack.push_back({std::move(part.front), node, true, item.depth + 1});
+    if (!part.back.empty())
+      stack.push_back({std::move(part.back), node, false, item.depth + 1, SplitContext::child_key(item.key, false)});
+    if (!part.front.empty())
+      stack.push_back({std::move(part.front), node, true, item.depth + 1, SplitContext::child_key(item.key, true)});
+  }
+
+  // Moves the item's fragments, and the planes they and its cell use, into a new task's own store
+  // and pool (so the task shares nothing with this builder, which goes on adding fragments and
+  // planes), then starts it. Runs on the main builder's thread, in its deterministic order.
+  void hand_off(WorkItem item) {
+    auto& task = *tasks_->emplace_back(std::make_unique<Task>());
+    task.tree.shape = tree_.shape;
+    task.tree.tol = tree_.tol;
+    task.tree.bounds = tree_.bounds;
+    task.splitter = splitter_.clone();
+    const auto adopt = [&](std::uint32_t p) {
+      const std::uint32_t local = task.tree.planes.add(tree_.planes[p]);
+      if ((local >> 1) == task.main_index.size()) task.main_index.push_back(p ^ (local & 1u));
+      return local;
+    };
+    collect_cell_planes(item);
+    for (auto p : cell_planes_) task.prefix.push_back(adopt(p));
+    std::vector<std::uint32_t> ids;
+    ids.reserve(item.ids.size());
+    for (auto id : item.ids) ids.push_back(task.store.add(store_.take(id), adopt(store_.plane(id)), store_.sphere(id)));
+    task.root = {std::move(ids), kNull, true, item.depth, item.key};
+    task.parent = item.parent;
+    task.front_side = item.front_side;
+    Task* t = &task;
+#pragma omp task default(none) firstprivate(t)
+    RecursiveBuilder(t->tree, t->store, *t->splitter, std::move(t->prefix), nullptr).run(std::move(t->root));
   }
 
   // The chosen pooled plane, and whether it is the plane of one of the node's fragments.
   std::pair<std::uint32_t, bool> choose_plane(const WorkItem& item) {
     if (splitter_.needs_cell()) collect_cell_planes(item);
-    const SplitContext ctx{item.ids, store_, tree_.planes, tree_.tol, tree_.bounds, cell_planes_, item.depth};
+    const SplitContext ctx{item.ids, store_, tree_.planes, tree_.tol, tree_.bounds, cell_planes_, item.depth, item.key};
     const SplitChoice choice = splitter_.choose(ctx);
     switch (choice.kind) {
       case SplitChoice::Kind::Fragment: return {store_.plane(choice.fragment), true};
@@ -90,6 +148,7 @@ class RecursiveBuilder {
       front = parent_front_[node];
       node = parent_[node];
     }
+    cell_planes_.insert(cell_planes_.end(), prefix_.rbegin(), prefix_.rend());
     std::reverse(cell_planes_.begin(), cell_planes_.end());
   }
 
@@ -172,10 +231,134 @@ class RecursiveBuilder {
   Tree& tree_;
   FragmentStore& store_;
   Splitter& splitter_;
+  std::vector<std::uint32_t> prefix_;
+  std::vector<std::unique_ptr<Task>>* tasks_;
+  std::size_t min_task_, max_task_;
   std::vector<std::uint32_t> cell_planes_;
   std::vector<std::uint32_t> parent_;  // build-time side data, parallel to tree_.nodes
   std::vector<bool> parent_front_;
 };
+
+// The main pool's index of every plane of a finished task's pool, by pair: the planes the task was
+// given map back to where they came from, the ones it chose itself join the main pool (where an
+// identical plane meets its twin again).
+std::vector<std::uint32_t> planes_to_main(PlanePool& main, Task& task) {
+  std::vector<std::uint32_t> to_main = std::move(task.main_index);
+  for (auto k = static_cast<std::uint32_t>(to_main.size()); k < task.tree.planes.size() / 2; ++k)
+    to_main.push_back(main.add(task.tree.planes[2 * k]));
+  return to_main;
+}
+
+// Lays the main builder's nodes and the tasks' subtrees out as one tree in pre-order (front child
+// first), the order a build without tasks makes, in arrays allocated once at their final size:
+// every node and fragment is moved exactly once. A task's subtree is already in pre-order, so it
+// is copied as one block with its links shifted.
+class Assembler {
+ public:
+  Assembler(Tree& main, std::vector<std::unique_ptr<Task>>& tasks) : main_(main), tasks_(tasks) {}
+
+  void run() {
+    hung_.assign(2 * main_.nodes.size(), kNull);
+    std::size_t nodes = main_.nodes.size(), fragments = main_.fragments.size();
+    for (std::uint32_t t = 0; t < tasks_.size(); ++t) {
+      hung_[2 * tasks_[t]->parent + (tasks_[t]->front_side ? 0 : 1)] = t;
+      nodes += tasks_[t]->tree.nodes.size();
+      fragments += tasks_[t]->tree.fragments.size();
+    }
+    nodes_.reserve(nodes);
+    fragments_.reserve(fragments);
+    planes_.reserve(fragments);
+    std::vector<Pending> stack{{0, false, kNull, true}};
+    while (!stack.empty()) {
+      const Pending p = stack.back();
+      stack.pop_back();
+      const auto at = static_cast<std::uint32_t>(nodes_.size());
+      if (p.parent != kNull) (p.front_side ? nodes_[p.parent].front : nodes_[p.parent].back) = at;
+      if (p.task) copy_task(*tasks_[p.index]);
+      else copy_main(p.index, at, stack);
+    }
+    main_.nodes = std::move(nodes_);
+    main_.fragments = std::move(fragments_);
+    main_.fragment_plane = std::move(planes_);
+  }
+
+ private:
+  // A subtree still to lay out: main node `index`, or task `index`, to link under `parent` (new index).
+  struct Pending {
+    std::uint32_t index;
+    bool task;
+    std::uint32_t parent;
+    bool front_side;
+  };
+
+  void copy_main(std::uint32_t index, std::uint32_t at, std::vector<Pending>& stack) {
+    const Node& old = main_.nodes[index];
+    Node n = old;
+    n.front = n.back = kNull;  // set when the children are laid out
+    append_fragments(n, main_.fragments, main_.fragment_plane, [](std::uint32_t p) { return p; });
+    nodes_.push_back(n);
+    push_child(stack, old.back, hung_[2 * index + 1], at, false);
+    push_child(stack, old.front, hung_[2 * index], at, true);
+  }
+
+  static void push_child(std::vector<Pending>& stack, std::uint32_t child, std::uint32_t task, std::uint32_t at,
+                         bool front) {
+    if (child != kNull) stack.push_back({child, false, at, front});
+    else if (task != kNull) stack.push_back({task, true, at, front});
+  }
+
+  void copy_task(Task& task) {
+    const std::vector<std::uint32_t> to_main = planes_to_main(main_.planes, task);
+    const auto remap = [&](std::uint32_t p) { return to_main[p >> 1] ^ (p & 1u); };
+    const auto offset = static_cast<std::uint32_t>(nodes_.size());
+    for (Node n : task.tree.nodes) {
+      if (n.plane != kNull) n.plane = remap(n.plane);
+      if (n.front != kNull) n.front += offset;
+      if (n.back != kNull) n.back += offset;
+      append_fragments(n, task.tree.fragments, task.tree.fragment_plane, remap);
+      nodes_.push_back(n);
+    }
+    BuildStats& to = main_.stats;
+    const BuildStats& from = task.tree.stats;
+    to.splits += from.splits;
+    to.dropped_slivers += from.dropped_slivers;
+    to.dropped_area += from.dropped_area;
+    to.fallbacks += from.fallbacks;
+    task = Task{};
+  }
+
+  // Moves node n's fragments to the end of the new arrays and points n at them.
+  template <class Remap>
+  void append_fragments(Node& n, std::vector<Polygon>& fragments, const std::vector<std::uint32_t>& planes, Remap remap) {
+    const std::uint32_t first = n.first;
+    n.first = static_cast<std::uint32_t>(fragments_.size());
+    for (std::uint32_t f = first; f < first + n.count; ++f) {
+      fragments_.push_back(std::move(fragments[f]));
+      planes_.push_back(remap(planes[f]));
+    }
+  }
+
+  Tree& main_;
+  std::vector<std::unique_ptr<Task>>& tasks_;
+  std::vector<std::uint32_t> hung_;  // per main node and side (2n front, 2n+1 back): the task hung there
+  std::vector<Node> nodes_;
+  std::vector<Polygon> fragments_;
+  std::vector<std::uint32_t> planes_;
+};
+
+// Builds the tree top-down; subtrees handed off run as OpenMP tasks on the other threads while the
+// main builder goes on, and are laid out with the main builder's nodes once all are done.
+void build_recursive(Tree& tree, FragmentStore& store, Splitter& splitter, std::vector<std::uint32_t> ids,
+                     const BuildOptions& options) {
+  std::vector<std::unique_ptr<Task>> tasks;
+  const std::size_t min_task = std::max<std::size_t>(options.min_task_fragments, 1);
+  const std::size_t max_task = tree.stats.n_input / std::max<std::size_t>(options.task_share, 1);
+#pragma omp parallel default(none) shared(tree, store, splitter, ids, tasks, min_task, max_task)
+#pragma omp single
+  RecursiveBuilder(tree, store, splitter, {}, &tasks, min_task, max_task).run(WorkItem{std::move(ids)});
+  tree.stats.tasks = tasks.size();
+  if (!tasks.empty()) Assembler(tree, tasks).run();
+}
 
 }  // namespace
 
@@ -188,7 +371,7 @@ Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildO
   if (options.incremental)
     build_incremental(tree, store, std::move(ids), splitter, options);
   else
-    RecursiveBuilder(tree, store, splitter).run(std::move(ids));
+    build_recursive(tree, store, splitter, std::move(ids), options);
   tree.freeze();
   tree.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;
@@ -197,6 +380,7 @@ Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildO
 Tree build_incremental_tree(std::span<const Polygon> input, const BuildOptions& options) {
   struct NoSplitter final : Splitter {
     SplitChoice choose(const SplitContext&) override { return SplitChoice::none(); }
+    std::unique_ptr<Splitter> clone() const override { return std::make_unique<NoSplitter>(); }
   } none;
   BuildOptions incremental = options;
   incremental.incremental = true;

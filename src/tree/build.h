@@ -19,11 +19,21 @@ struct BuildOptions {
   bool incremental = false;                 // Thibault–Naylor insertion, one polygon at a time
   InsertOrder order = InsertOrder::Given;   // incremental only
   std::uint64_t order_seed = 0;             // InsertOrder::Shuffled only
+  // How the recursive build divides its work among threads. The main builder makes the top of the
+  // tree and hands every pending subtree of at most 1/task_share of the input, and at least
+  // min_task_fragments fragments, to a task that builds it alone on any thread (OpenMP tasks). The
+  // tree does not depend on these (tests build with other values and compare bit for bit), only how
+  // the work divides: 64 leaves tens of tasks to balance two threads over; 512 keeps a task's setup
+  // (moving its fragments out) small beside its work, so inputs under 32,768 polygons build on one
+  // thread.
+  std::size_t task_share = 64;
+  std::size_t min_task_fragments = 512;
 };
 
 // Input polygons must be convex; polygons that are not planar within the tolerance are
 // fan-triangulated and slivers dropped (both counted in the stats). Tolerance and bounds come from
-// the input's bounding box. Deterministic: same input, splitter state and options, same tree.
+// the input's bounding box. Deterministic: same input, splitter settings and seed, same tree, bit for
+// bit, on any number of threads. The splitter is cloned for each task and not itself changed.
 Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options = {});
 // The heuristic label of an incremental build in every JSON: it consults no heuristic.
 inline constexpr std::string_view kIncrementalLabel = "incremental";

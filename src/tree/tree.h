@@ -46,6 +46,7 @@ struct BuildStats {
   double input_area = 0.0;            // total area of the input polygons
   double dropped_area = 0.0;          // total area of everything dropped
   std::uint64_t fallbacks = 0;        // nodes where the splitter's plane separated nothing
+  std::uint64_t tasks = 0;            // subtrees built as separate tasks (BuildOptions::task_share)
   double build_seconds = 0.0;
 };
 
@@ -60,7 +61,9 @@ struct Tree {
   BuildStats stats;
 
   bool empty() const { return nodes.empty(); }
-  // The last step of every build: renumbers the plane pool in the order nodes use their planes, so
+  // The last step of every build: puts the nodes in pre-order (front child first) and the fragments
+  // in node order, whatever order the build made them in (subtrees built in parallel are appended
+  // as they finish); then renumbers the plane pool in the order nodes use their planes, so
   // a traversal (which visits nodes in near their stored order) reads the pool front to back
   // instead of at random; planes no node or fragment uses are dropped. Orientation and sharing are
   // kept: a node and a fragment on one plane still have indices equal up to the low bit.
@@ -68,6 +71,9 @@ struct Tree {
   // The bytes of what the tree stores (sizes, not capacities), so the count is the same with any
   // standard library's growth policy and can be compared exactly.
   std::size_t bytes() const;
+
+ private:
+  void order_nodes();
 };
 
 }  // namespace bsp
