@@ -19,6 +19,7 @@
 #include "common/errors.h"
 #include "split/registry.h"
 #include "sweep/aggregate.h"
+#include "sweep/bench_gate.h"
 #include "sweep/journal.h"
 #include "sweep/merge.h"
 #include "sweep/progress.h"
@@ -462,4 +463,71 @@ TEST(SweepReport, ReadingRejectsOtherSchemasVersionsAndDamagedRecords) {
   EXPECT_THROW(read_report((dir / "r.json").string()), InputError);
   EXPECT_THROW(read_report((dir / "missing.json").string()), InputError);
   fs::remove_all(dir);
+}
+
+// --- the benchmark gate (sweep/bench_gate.h) -----------------------------------------------------
+
+namespace {
+
+nlohmann::json bench_output(double build_vs_embree, double speedup, double fragments) {
+  nlohmann::json doc;
+  doc["context"] = {{"date", "today"}};
+  doc["benchmarks"] = nlohmann::json::array();
+  doc["benchmarks"].push_back({{"name", "scaling/build/random-disjoint/n:100000/crystal/threads:2/real_time"},
+                               {"run_type", "iteration"},
+                               {"build_vs_embree", build_vs_embree},
+                               {"speedup", speedup},
+                               {"fragments", fragments},
+                               {"bytes_per_fragment", 211.0}});
+  doc["benchmarks"].push_back({{"name", "scaling/traverse/random-disjoint/n:100000/crystal/real_time"},
+                               {"run_type", "iteration"},
+                               {"traverse_vs_sort", 0.3},
+                               {"fragments", fragments}});
+  return doc;
+}
+
+bool any_change(const bsp::sweep::RegressResult& r, const std::string& what, const std::string& field) {
+  return std::any_of(r.changes.begin(), r.changes.end(), [&](const auto& c) { return c.what == what && c.field == field; });
+}
+
+}  // namespace
+
+TEST(BenchGate, IdenticalOutputPassesAndComparesEveryJudgedCounter) {
+  const auto r = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.8, 1e5), {});
+  EXPECT_FALSE(r.failed());
+  EXPECT_EQ(r.runs_compared, 2u);
+  EXPECT_EQ(r.values_compared, 6u);  // build_vs_embree, speedup, fragments, bytes; traverse_vs_sort, fragments
+}
+
+TEST(BenchGate, RatioWorseByTheToleranceFailsAndASmallerDriftPasses) {
+  EXPECT_TRUE(any_change(bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(12, 1.8, 1e5), {}),
+                         "worse", "build_vs_embree"));
+  EXPECT_FALSE(bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(11.5, 1.8, 1e5), {}).failed());
+  // A speed-up is better when higher; losing it is noted, not failed (the second core is shared).
+  const auto lost_core = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.0, 1e5), {});
+  EXPECT_TRUE(any_change(lost_core, "worse", "speedup"));
+  EXPECT_FALSE(lost_core.failed());
+}
+
+TEST(BenchGate, BetterRatioIsANoteNotAFailure) {
+  const auto r = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(4, 1.8, 1e5), {});
+  EXPECT_FALSE(r.failed());
+  EXPECT_TRUE(any_change(r, "better", "build_vs_embree"));
+}
+
+TEST(BenchGate, ChangedTreeOrMissingBenchmarkFails) {
+  EXPECT_TRUE(any_change(bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.8, 1e5 + 1), {}),
+                         "changed", "fragments"));
+  auto fewer = bench_output(8, 1.8, 1e5);
+  fewer["benchmarks"].erase(1);
+  const auto r = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), fewer, {});
+  EXPECT_TRUE(r.failed());
+  EXPECT_TRUE(any_change(r, "missing benchmark", ""));
+  // The other way round the extra benchmark is new, not a regression.
+  EXPECT_FALSE(bsp::sweep::compare_benchmarks(fewer, bench_output(8, 1.8, 1e5), {}).failed());
+}
+
+TEST(BenchGate, ReportsAreNotBenchmarkOutputs) {
+  EXPECT_TRUE(bsp::sweep::is_benchmark_output(bench_output(8, 1.8, 1e5)));
+  EXPECT_FALSE(bsp::sweep::is_benchmark_output(nlohmann::json{{"schema", "bspbench-report"}, {"runs", nlohmann::json::array()}}));
 }

@@ -15,6 +15,12 @@
 
 namespace bsp::sweep {
 
+std::string number_text(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
 namespace {
 
 // Sections of a run record compared exactly (record.h).
@@ -31,12 +37,6 @@ std::string run_label(const nlohmann::json& id) {
 // The timing group of a run (regress.h).
 std::string group_label(const nlohmann::json& id) {
   return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + id.value("shape", "?");
-}
-
-std::string number_text(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
 }
 
 // A section of a run, or null when the run has none.

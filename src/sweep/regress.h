@@ -63,6 +63,8 @@ struct RegressResult {
 // Throws UsageError when the tolerance is not > 1 or alpha not in (0, 1).
 RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current,
                               const RegressOptions& options);
+// Three significant digits: how the gate's tables show numbers.
+std::string number_text(double v);
 // The table of changes, then one summary line.
 void print_regress(const RegressResult& result, std::ostream& out);
 
