@@ -78,7 +78,6 @@ Tree hand_built(const std::vector<HandNode>& spec) {
     n.front = s.front;
     n.back = s.back;
     n.first = static_cast<std::uint32_t>(t.fragments.size());
-    n.count = static_cast<std::uint32_t>(s.fragments);
     for (int i = 0; i < s.fragments; ++i) {
       t.fragments.push_back(axis_square(s.axis, 0.5));
       t.fragment_plane.push_back(n.plane);
@@ -183,7 +182,7 @@ double monte_carlo_e_line(const Tree& tree, const Box& root, int samples) {
 std::optional<RayHit> brute_force_first_hit(const Tree& tree, const Ray& ray) {
   std::optional<RayHit> best;
   for (std::uint32_t i = 0; i < tree.fragments.size(); ++i) {
-    const auto t = ray_polygon_hit(ray, tree.fragments[i], tree.planes[tree.fragment_plane[i]]);
+    const auto t = ray_polygon_hit(ray, tree.fragments.points(i), tree.planes[tree.fragment_plane[i]]);
     if (t && (!best || *t < best->t)) best = RayHit{*t, i};
   }
   return best;
@@ -232,7 +231,7 @@ CullingCheck check_culling(const Tree& tree, std::span<const Frustum> views) {
     for (auto i : culled_visibility_order(tree, f)) emitted[i] = true;
     for (std::uint32_t i = 0; i < tree.fragments.size(); ++i) {
       out.culled += !emitted[i];
-      for (const Vec3& p : sample_points(tree.fragments[i], rng))
+      for (const Vec3& p : sample_points(tree.fragments[i].polygon(), rng))
         if (f.contains(p, margin)) (emitted[i] ? out.seen_inside : out.missed) += 1;
     }
   }
@@ -344,8 +343,8 @@ TEST(CulledTraversal, FrustumContainingTheWholeSceneEmitsEverything) {
   const double d = tree.bounds.diagonal();
   const Frustum f{tree.bounds.center() + Vec3{0.3, -0.2, 1.0} * (2 * d), Vec3{-0.3, 0.2, -1.0}, {0, 1, 0},
                   1.2, 1.2, 0.01 * d, 10 * d};
-  for (const auto& frag : tree.fragments)
-    for (const auto& v : frag.verts) ASSERT_TRUE(f.contains(v.p, 0.0));
+  for (const FragmentView frag : tree.fragments)
+    for (const Vec3& p : frag.p) ASSERT_TRUE(f.contains(p, 0.0));
   auto order = culled_visibility_order(tree, f);
   ASSERT_EQ(order.size(), tree.fragments.size());
   std::sort(order.begin(), order.end());
@@ -384,13 +383,15 @@ TEST(RayShooting, AFarEyeHitsATinyFragmentItAimsAt) {
   const double s = 1e-4;
   const Polygon tiny{{{{0.3, 0.2, 0.1}, 0, 0}, {{0.3 + s, 0.2, 0.1}, 0, 0}, {{0.3, 0.2 + s, 0.1}, 0, 0}}, 0};
   const Plane support = *supporting_plane(tiny);
+  std::vector<Vec3> corners;
+  for (const auto& v : tiny.verts) corners.push_back(v.p);
   const Vec3 eye{2865.96, 41845.2, 30671.9};
   int hits = 0;
   for (double u : {0.2, 0.33, 0.5})
     for (double v : {0.2, 0.33}) {
       const Vec3 target = tiny.verts[0].p + Vec3{u * s, v * s, 0};
       const Ray ray{eye, normalize(target - eye)};
-      hits += ray_polygon_hit(ray, tiny, support).has_value();
+      hits += ray_polygon_hit(ray, corners, support).has_value();
     }
   EXPECT_EQ(hits, 6);
 }
@@ -468,12 +469,12 @@ Tree chain_tree(std::size_t n) {
     node.plane = t.planes.add(Plane{{0, 0, 1}, -z});
     node.front = i + 1 < n ? static_cast<std::uint32_t>(i + 1) : kNull;
     node.first = static_cast<std::uint32_t>(i);
-    node.count = 1;
     t.nodes.push_back(node);
-    t.fragments.push_back({{{{0, 0, z}, 0, 0}, {{1, 0, z}, 1, 0}, {{1, 1, z}, 1, 1}, {{0, 1, z}, 0, 1}},
-                           static_cast<std::uint32_t>(i)});
+    const Polygon square{{{{0, 0, z}, 0, 0}, {{1, 0, z}, 1, 0}, {{1, 1, z}, 1, 1}, {{0, 1, z}, 0, 1}},
+                         static_cast<std::uint32_t>(i)};
+    t.fragments.push_back(square);
     t.fragment_plane.push_back(node.plane);
-    for (const auto& v : t.fragments.back().verts) t.bounds.add(v.p);
+    for (const auto& v : square.verts) t.bounds.add(v.p);
   }
   t.tol = Tolerance::for_extent(t.bounds.diagonal());
   return t;

@@ -53,11 +53,11 @@ bool overlap_on_screen(const Tree& tree, const Vec3& eye, const std::vector<std:
                        const std::vector<std::uint32_t>& b) {
   const double clear = kClearRelative * tree.bounds.diagonal();
   for (std::uint32_t f : a) {
-    const Ray ray{eye, centroid(tree.fragments[f]) - eye};
-    const auto tf = plain_hit(ray, tree.fragments[f], clear);
+    const Ray ray{eye, centroid(tree.fragments[f].polygon()) - eye};
+    const auto tf = plain_hit(ray, tree.fragments[f].polygon(), clear);
     if (!tf) continue;
     for (std::uint32_t g : b) {
-      const auto tg = plain_hit(ray, tree.fragments[g], clear);
+      const auto tg = plain_hit(ray, tree.fragments[g].polygon(), clear);
       if (tg && std::abs(*tg - *tf) * length(ray.dir) > clear) return true;
     }
   }
@@ -76,8 +76,8 @@ struct Score {
 class Checker {
  public:
   Checker(const Tree& tree, const Vec3& eye)
-      : scene_(tree.fragments, tree.tol.plane_eps),
-        rays_(validation_rays(tree.fragments, tree.bounds, eye, ValidationSettings{})) {}
+      : scene_(tree.fragments.to_polygons(), tree.tol.plane_eps),
+        rays_(validation_rays(tree.fragments.to_polygons(), tree.bounds, eye, ValidationSettings{})) {}
   bool catches(std::span<const std::uint32_t> order) const { return check_order(scene_, rays_, order).violations > 0; }
 
  private:
@@ -97,11 +97,11 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> seen_pairs(const Tree& tree
   const double clear = kClearRelative * tree.bounds.diagonal();
   std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> found;
   for (std::uint32_t f = 0; f < tree.fragments.size(); ++f) {
-    const Ray ray{eye, centroid(tree.fragments[f]) - eye};
-    const auto tf = plain_hit(ray, tree.fragments[f], clear);
+    const Ray ray{eye, centroid(tree.fragments[f].polygon()) - eye};
+    const auto tf = plain_hit(ray, tree.fragments[f].polygon(), clear);
     if (!tf) continue;
     for (std::uint32_t g = 0; g < tree.fragments.size(); ++g) {
-      const auto tg = plain_hit(ray, tree.fragments[g], clear);
+      const auto tg = plain_hit(ray, tree.fragments[g].polygon(), clear);
       const double gap = tg ? std::abs(*tg - *tf) * length(ray.dir) : 0.0;
       if (g != f && gap > clear) found.emplace_back(gap, std::min(f, g), std::max(f, g));
     }
@@ -151,7 +151,7 @@ Subtrees subtrees(const Tree& tree) {
   }
   for (auto it = preorder.rbegin(); it != preorder.rend(); ++it) {
     const Node& node = tree.nodes[*it];
-    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) s.fragments[*it].push_back(i);
+    for (std::uint32_t i = tree.fragments_of(*it).begin; i < tree.fragments_of(*it).end; ++i) s.fragments[*it].push_back(i);
     for (std::uint32_t c : {node.front, node.back})
       if (c != kNull) s.fragments[*it].insert(s.fragments[*it].end(), s.fragments[c].begin(), s.fragments[c].end());
   }
@@ -193,7 +193,7 @@ TEST(OrderMutations, SwappedChildrenOfDeepNodesOverlappingOnScreenAreCaught) {
     const auto& back = s.fragments[node.back];
     if (!overlap_on_screen(tree, eye, front, back)) continue;
     std::vector<std::uint32_t> own;
-    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) own.push_back(i);
+    for (std::uint32_t i = tree.fragments_of(n).begin; i < tree.fragments_of(n).end; ++i) own.push_back(i);
     const bool back_first = pos[back.front()] < pos[front.front()];
     score.add(checker.catches(swap_children(order, pos, back_first ? back : front, own, back_first ? front : back)));
   }
@@ -209,10 +209,10 @@ void plant_pass_swaps(const Tree& tree, const Vec3& eye, Score& score) {
   const auto pos = positions(order);
   const Checker checker(tree, eye);
   ASSERT_FALSE(checker.catches(order));
-  for (const Node& node : tree.nodes) {
-    if (!node.is_cell_leaf()) continue;
+  for (std::uint32_t n = 0; n < tree.nodes.size(); ++n) {
+    if (!tree.nodes[n].is_cell_leaf()) continue;
     std::vector<std::uint32_t> facing, away;
-    for (std::uint32_t i = node.first; i < node.first + node.count; ++i)
+    for (std::uint32_t i = tree.fragments_of(n).begin; i < tree.fragments_of(n).end; ++i)
       (tree.planes[tree.fragment_plane[i]].distance(eye) >= -tree.tol.plane_eps ? facing : away).push_back(i);
     if (facing.empty() || away.empty() || !overlap_on_screen(tree, eye, facing, away)) continue;
     score.add(checker.catches(swap_children(order, pos, facing, {}, away)));

@@ -39,6 +39,16 @@ void expect_each_fragment_once(const Tree& tree, const Vec3& eye, Order order) {
   for (std::uint32_t i = 0; i < seq.size(); ++i) ASSERT_EQ(seq[i], i);
 }
 
+// The array with fragment i replaced (to corrupt a frozen tree in a test).
+FragmentArray replaced(const FragmentArray& a, std::size_t i, const Polygon& poly) {
+  FragmentArray out;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (k == i) out.push_back(poly);
+    else out.push_back(a[k]);
+  }
+  return out;
+}
+
 }  // namespace
 
 class FoundationHeuristics : public ::testing::TestWithParam<std::tuple<std::string, std::string, Shape>> {};
@@ -71,8 +81,14 @@ TEST(TreeInvariants, CatchACorruptedTree) {
   EXPECT_FALSE(check_tree_invariants(tree, scene.polygons).ok());
   std::swap(tree.nodes[0].front, tree.nodes[0].back);
   // Shrink a fragment: the area no longer adds up.
-  tree.fragments.back().verts.pop_back();
+  Polygon shrunk = tree.fragments[tree.fragments.size() - 1].polygon();
+  shrunk.verts.pop_back();
+  tree.fragments = replaced(tree.fragments, tree.fragments.size() - 1, shrunk);
   EXPECT_FALSE(check_tree_invariants(tree, scene.polygons).ok());
+  // Nodes out of pre-order: a node's fragments would run backwards.
+  Tree shuffled = build(scene.polygons, "random");
+  std::swap(shuffled.nodes[1].first, shuffled.nodes[2].first);
+  EXPECT_FALSE(check_tree_invariants(shuffled, scene.polygons).ok());
 }
 
 TEST(TreeInvariants, CatchADegenerateFragment) {
@@ -81,15 +97,18 @@ TEST(TreeInvariants, CatchADegenerateFragment) {
   ASSERT_TRUE(check_tree_invariants(tree, scene.polygons).ok());
   // A repeated vertex: same area, same sides, only the shape check can see it.
   Tree repeated = tree;
-  auto& verts = repeated.fragments.front().verts;
-  verts.insert(verts.begin() + 1, verts.front());
+  Polygon twice = tree.fragments[0].polygon();
+  twice.verts.insert(twice.verts.begin() + 1, twice.verts.front());
+  repeated.fragments = replaced(tree.fragments, 0, twice);
   const InvariantReport r = check_tree_invariants(repeated, scene.polygons);
   ASSERT_EQ(r.violations, 1u);
   EXPECT_NE(r.first_problems.front().find("repeats vertex"), std::string::npos);
   // A sliver: one vertex moved onto the opposite edge's midpoint leaves zero width.
   Tree sliver = tree;
-  auto& v = sliver.fragments.front().verts;
+  Polygon flat = tree.fragments[0].polygon();
+  auto& v = flat.verts;
   v[2].p = (v[0].p + v[1].p) * 0.5;
+  sliver.fragments = replaced(tree.fragments, 0, flat);
   const InvariantReport s = check_tree_invariants(sliver, scene.polygons);
   bool named = false;
   for (const auto& p : s.first_problems) named |= p.find("sliver") != std::string::npos;
@@ -107,7 +126,7 @@ TEST(Traversal, FrontToBackIsTheReverseOfBackToFront) {
   ASSERT_EQ(b2f.size(), f2b.size());
   std::vector<std::uint32_t> node_of(tree.fragments.size());
   for (std::uint32_t n = 0; n < tree.nodes.size(); ++n)
-    for (std::uint32_t i = tree.nodes[n].first; i < tree.nodes[n].first + tree.nodes[n].count; ++i) node_of[i] = n;
+    for (std::uint32_t i = tree.fragments_of(n).begin; i < tree.fragments_of(n).end; ++i) node_of[i] = n;
   for (std::size_t i = 0; i < b2f.size(); ++i) EXPECT_EQ(node_of[b2f[i]], node_of[f2b[i]]);
 }
 
@@ -141,14 +160,16 @@ TEST(DegenerateChain, IncrementalInsertionMakesTheSameChainWithoutRecursion) {
 TEST(TreeBytes, CountSizesNotCapacities) {
   const Scene scene = make_scene("random-triangles", {{"n", "200"}});
   const Tree tree = build(scene.polygons, "first");
-  // The pool stores one plane per pair of indices (a plane and its flip).
-  std::size_t expected = tree.nodes.size() * sizeof(Node) + tree.planes.size() / 2 * sizeof(Plane) +
-                         tree.fragment_plane.size() * sizeof(std::uint32_t) + tree.fragments.size() * sizeof(Polygon);
-  for (const auto& f : tree.fragments) expected += f.verts.size() * sizeof(Vertex);
+  // The pool stores one plane per pair of indices (a plane and its flip). A fragment stores its
+  // vertex offset and source, 24 bytes per position and, the scene having texture coordinates,
+  // 8 per vertex for them; one more offset ends the last fragment.
+  ASSERT_TRUE(tree.fragments.has_tex_coords());
+  const std::size_t f = tree.fragments.size(), v = tree.fragments.vertex_count();
+  const std::size_t expected = tree.nodes.size() * 16 + tree.planes.size() / 2 * sizeof(Plane) + f * 4 +
+                               f * 8 + 4 + v * (24 + 8);
   EXPECT_EQ(tree.bytes(), expected);
   Tree roomy = tree;
   roomy.nodes.reserve(4 * tree.nodes.capacity() + 16);
-  roomy.fragments.reserve(4 * tree.fragments.capacity() + 16);
-  roomy.fragments.front().verts.reserve(64);
+  roomy.fragments.reserve(4 * f + 16, 4 * v + 16);
   EXPECT_EQ(roomy.bytes(), tree.bytes());
 }

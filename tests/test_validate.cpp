@@ -261,9 +261,9 @@ TEST(WrongOrders, ReversedBspOrderIsCaught) {
   const Tree tree = build(scene, "random");
   for (const Vec3& eye : validation_eyes(tree.bounds, 2)) {
     auto order = visibility_order(tree, eye, Order::BackToFront);
-    ASSERT_EQ(validate_order(tree.fragments, eye, order, quick(1)).violations, 0u);
+    ASSERT_EQ(validate_order(tree.fragments.to_polygons(), eye, order, quick(1)).violations, 0u);
     std::reverse(order.begin(), order.end());
-    EXPECT_GT(validate_order(tree.fragments, eye, order, quick(1)).violations, 0u);
+    EXPECT_GT(validate_order(tree.fragments.to_polygons(), eye, order, quick(1)).violations, 0u);
   }
 }
 
@@ -279,11 +279,12 @@ TEST(WrongOrders, CentroidDepthSortOfCyclicOverlapsIsCaught) {
 TEST(WrongOrders, CountsAreTheSameOnOneAndTwoThreads) {
   const Scene scene = make_scene("random-triangles", {{"n", "300"}, {"seed", "5"}});
   const Tree tree = build(scene, "first");
-  const EmbreeScene embree(tree.fragments);
+  const std::vector<Polygon> fragments = tree.fragments.to_polygons();
+  const EmbreeScene embree(fragments);
   const Vec3 eye = validation_eyes(tree.bounds, 1)[0];
   auto order = visibility_order(tree, eye, Order::BackToFront);
   std::reverse(order.begin(), order.end());
-  const auto rays = validation_rays(tree.fragments, tree.bounds, eye, quick(1));
+  const auto rays = validation_rays(fragments, tree.bounds, eye, quick(1));
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   const OrderCheck one = check_order(embree, rays, order);

@@ -35,15 +35,15 @@ Vec3 parse_point(const std::string& text, std::string_view option) {
 std::string fragments_obj(const Tree& tree) {
   std::string out = "# bspbench order: face k (0-based, in file order) is fragment k\n";
   char line[128];
-  for (const auto& f : tree.fragments)
-    for (const auto& v : f.verts) {
-      std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", v.p.x, v.p.y, v.p.z);
+  for (const FragmentView f : tree.fragments)
+    for (const Vec3& p : f.p) {
+      std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
       out += line;
     }
   std::size_t next = 1;
-  for (const auto& f : tree.fragments) {
+  for (const FragmentView f : tree.fragments) {
     out += "f";
-    for (std::size_t i = 0; i < f.verts.size(); ++i) {
+    for (std::size_t i = 0; i < f.size(); ++i) {
       out += ' ';
       out += std::to_string(next++);
     }

@@ -23,9 +23,10 @@ void measure_shape(const Tree& tree, TreeMetrics& m) {
     const Node& node = tree.nodes[i];
     const std::uint64_t f = node.front == kNull ? 0 : subtree[node.front];
     const std::uint64_t b = node.back == kNull ? 0 : subtree[node.back];
-    subtree[i] = f + b + node.count;
+    const std::uint32_t count = tree.fragments_of(static_cast<std::uint32_t>(i)).size();
+    subtree[i] = f + b + count;
     m.max_depth = std::max(m.max_depth, depth[i]);
-    frag_depth_sum += static_cast<double>(depth[i]) * node.count;
+    frag_depth_sum += static_cast<double>(depth[i]) * count;
     if (!node.has_children()) {
       ++m.leaves;
       leaf_depth_sum += depth[i];

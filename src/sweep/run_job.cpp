@@ -52,15 +52,16 @@ nlohmann::json validation_json(const Tree& tree, const Job& job, nlohmann::json&
 nlohmann::json ray_shooting_json(const Tree& tree, const Job& job) {
   if (job.validation_views == 0) return nullptr;
   const ValidationSettings settings = validation_settings(job);
+  const std::vector<Polygon> fragments = tree.fragments.to_polygons();
   std::vector<Ray> all;
   for (const Vec3& eye : validation_eyes(tree.bounds, settings.views)) {
-    const std::vector<Ray> more = validation_rays(tree.fragments, tree.bounds, eye, settings);
+    const std::vector<Ray> more = validation_rays(fragments, tree.bounds, eye, settings);
     all.insert(all.end(), more.begin(), more.end());
   }
   const std::size_t stride = (all.size() + kMaxShootRays - 1) / kMaxShootRays;
   std::vector<Ray> rays;
   for (std::size_t i = 0; i < all.size(); i += std::max<std::size_t>(stride, 1)) rays.push_back(all[i]);
-  return to_json(check_ray_shooting(tree, EmbreeScene(tree.fragments, tree.tol.plane_eps), rays));
+  return to_json(check_ray_shooting(tree, EmbreeScene(fragments, tree.tol.plane_eps), rays));
 }
 
 Tree build_once(const Job& job, const Scene& scene) {

@@ -30,7 +30,7 @@ struct Partition {
 // A subtree built by a task: a tree of its own (nodes, fragments, and a plane pool holding just the
 // planes it uses), grafted under `parent` once every task is done.
 struct Task {
-  Tree tree;
+  TreeDraft tree;
   FragmentStore store;
   std::unique_ptr<Splitter> splitter;
   WorkItem root;                      // ids in `store`; parent is kNull inside the task's tree
@@ -49,7 +49,7 @@ class RecursiveBuilder {
   // which builds everything it is given. The division depends on the input and the options only,
   // never on the thread count, and a splitter's choice depends only on its node's context, so a
   // subtree comes out the same whether a task or the main builder makes it.
-  RecursiveBuilder(Tree& tree, FragmentStore& store, Splitter& splitter, std::vector<std::uint32_t> prefix,
+  RecursiveBuilder(TreeDraft& tree, FragmentStore& store, Splitter& splitter, std::vector<std::uint32_t> prefix,
                    std::vector<std::unique_ptr<Task>>* tasks, std::size_t min_task = 0, std::size_t max_task = 0)
       : tree_(tree), store_(store), splitter_(splitter), prefix_(std::move(prefix)), tasks_(tasks),
         min_task_(min_task), max_task_(max_task) {}
@@ -213,7 +213,7 @@ class RecursiveBuilder {
   // Appends a node storing `ids` and links it under the item's parent.
   std::uint32_t make_node(std::uint32_t plane, const std::vector<std::uint32_t>& ids, const WorkItem& item) {
     const auto index = static_cast<std::uint32_t>(tree_.nodes.size());
-    Node n;
+    DraftNode n;
     n.plane = plane;
     n.first = static_cast<std::uint32_t>(tree_.fragments.size());
     n.count = static_cast<std::uint32_t>(ids.size());
@@ -228,7 +228,7 @@ class RecursiveBuilder {
     return index;
   }
 
-  Tree& tree_;
+  TreeDraft& tree_;
   FragmentStore& store_;
   Splitter& splitter_;
   std::vector<std::uint32_t> prefix_;
@@ -255,7 +255,7 @@ std::vector<std::uint32_t> planes_to_main(PlanePool& main, Task& task) {
 // is copied as one block with its links shifted.
 class Assembler {
  public:
-  Assembler(Tree& main, std::vector<std::unique_ptr<Task>>& tasks) : main_(main), tasks_(tasks) {}
+  Assembler(TreeDraft& main, std::vector<std::unique_ptr<Task>>& tasks) : main_(main), tasks_(tasks) {}
 
   void run() {
     hung_.assign(2 * main_.nodes.size(), kNull);
@@ -292,8 +292,8 @@ class Assembler {
   };
 
   void copy_main(std::uint32_t index, std::uint32_t at, std::vector<Pending>& stack) {
-    const Node& old = main_.nodes[index];
-    Node n = old;
+    const DraftNode& old = main_.nodes[index];
+    DraftNode n = old;
     n.front = n.back = kNull;  // set when the children are laid out
     append_fragments(n, main_.fragments, main_.fragment_plane, [](std::uint32_t p) { return p; });
     nodes_.push_back(n);
@@ -311,7 +311,7 @@ class Assembler {
     const std::vector<std::uint32_t> to_main = planes_to_main(main_.planes, task);
     const auto remap = [&](std::uint32_t p) { return to_main[p >> 1] ^ (p & 1u); };
     const auto offset = static_cast<std::uint32_t>(nodes_.size());
-    for (Node n : task.tree.nodes) {
+    for (DraftNode n : task.tree.nodes) {
       if (n.plane != kNull) n.plane = remap(n.plane);
       if (n.front != kNull) n.front += offset;
       if (n.back != kNull) n.back += offset;
@@ -329,7 +329,7 @@ class Assembler {
 
   // Moves node n's fragments to the end of the new arrays and points n at them.
   template <class Remap>
-  void append_fragments(Node& n, std::vector<Polygon>& fragments, const std::vector<std::uint32_t>& planes, Remap remap) {
+  void append_fragments(DraftNode& n, std::vector<Polygon>& fragments, const std::vector<std::uint32_t>& planes, Remap remap) {
     const std::uint32_t first = n.first;
     n.first = static_cast<std::uint32_t>(fragments_.size());
     for (std::uint32_t f = first; f < first + n.count; ++f) {
@@ -338,17 +338,17 @@ class Assembler {
     }
   }
 
-  Tree& main_;
+  TreeDraft& main_;
   std::vector<std::unique_ptr<Task>>& tasks_;
   std::vector<std::uint32_t> hung_;  // per main node and side (2n front, 2n+1 back): the task hung there
-  std::vector<Node> nodes_;
+  std::vector<DraftNode> nodes_;
   std::vector<Polygon> fragments_;
   std::vector<std::uint32_t> planes_;
 };
 
 // Builds the tree top-down; subtrees handed off run as OpenMP tasks on the other threads while the
 // main builder goes on, and are laid out with the main builder's nodes once all are done.
-void build_recursive(Tree& tree, FragmentStore& store, Splitter& splitter, std::vector<std::uint32_t> ids,
+void build_recursive(TreeDraft& tree, FragmentStore& store, Splitter& splitter, std::vector<std::uint32_t> ids,
                      const BuildOptions& options) {
   std::vector<std::unique_ptr<Task>> tasks;
   const std::size_t min_task = std::max<std::size_t>(options.min_task_fragments, 1);
@@ -364,15 +364,17 @@ void build_recursive(Tree& tree, FragmentStore& store, Splitter& splitter, std::
 
 Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  Tree tree;
-  tree.shape = options.shape;
-  FragmentStore store;
-  std::vector<std::uint32_t> ids = load_input(input, tree, store);
-  if (options.incremental)
-    build_incremental(tree, store, std::move(ids), splitter, options);
-  else
-    build_recursive(tree, store, splitter, std::move(ids), options);
-  tree.freeze();
+  TreeDraft draft;
+  draft.shape = options.shape;
+  {
+    FragmentStore store;
+    std::vector<std::uint32_t> ids = load_input(input, draft, store);
+    if (options.incremental)
+      build_incremental(draft, store, std::move(ids), splitter, options);
+    else
+      build_recursive(draft, store, splitter, std::move(ids), options);
+  }
+  Tree tree = freeze(std::move(draft));
   tree.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;
 }

@@ -11,7 +11,7 @@ namespace {
 // The tree while it grows: node fragment lists are open-ended until freeze().
 class IncrementalBuilder {
  public:
-  IncrementalBuilder(Tree& tree, FragmentStore& store) : tree_(tree), store_(store) {}
+  IncrementalBuilder(TreeDraft& tree, FragmentStore& store) : tree_(tree), store_(store) {}
 
   void insert(std::uint32_t id) {
     if (nodes_.empty()) {
@@ -34,7 +34,7 @@ class IncrementalBuilder {
       auto [s, parent] = stack.back();
       stack.pop_back();
       const auto index = static_cast<std::uint32_t>(tree_.nodes.size());
-      Node n;
+      DraftNode n;
       n.plane = nodes_[s].plane;
       n.first = static_cast<std::uint32_t>(tree_.fragments.size());
       n.count = static_cast<std::uint32_t>(frags_[s].size());
@@ -89,7 +89,7 @@ class IncrementalBuilder {
 
   std::uint32_t new_node(std::uint32_t f) {
     const auto index = static_cast<std::uint32_t>(nodes_.size());
-    Node n;
+    DraftNode n;
     n.plane = tree_.shape == Shape::Coarse ? kNull : store_.plane(f);
     nodes_.push_back(n);
     frags_.push_back({f});
@@ -121,9 +121,9 @@ class IncrementalBuilder {
     for (auto it = old.rbegin(); it != old.rend(); ++it) pending_.push_back({*it, n});
   }
 
-  Tree& tree_;
+  TreeDraft& tree_;
   FragmentStore& store_;
-  std::vector<Node> nodes_;  // scratch; first/count unused until freeze()
+  std::vector<DraftNode> nodes_;  // scratch; first/count unused until freeze()
   std::vector<std::vector<std::uint32_t>> frags_;
   std::vector<std::uint32_t> parent_scratch_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pending_;  // (fragment, node) to descend
@@ -136,7 +136,7 @@ void shuffle(std::vector<std::uint32_t>& ids, std::uint64_t seed) {
 
 }  // namespace
 
-void build_incremental(Tree& tree, FragmentStore& store, std::vector<std::uint32_t> ids, Splitter&,
+void build_incremental(TreeDraft& tree, FragmentStore& store, std::vector<std::uint32_t> ids, Splitter&,
                        const BuildOptions& options) {
   if (options.order == InsertOrder::Shuffled) shuffle(ids, options.order_seed);
   IncrementalBuilder builder(tree, store);

@@ -12,10 +12,11 @@
 
 #include "tree/build.h"
 #include "split/fragment_store.h"
+#include "tree/draft.h"
 
 namespace bsp {
 
-void build_incremental(Tree& tree, FragmentStore& store, std::vector<std::uint32_t> ids, Splitter& splitter,
+void build_incremental(TreeDraft& tree, FragmentStore& store, std::vector<std::uint32_t> ids, Splitter& splitter,
                        const BuildOptions& options);
 
 }  // namespace bsp

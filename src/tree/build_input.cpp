@@ -59,7 +59,7 @@ void load_one(const Polygon& poly, std::uint32_t source, double eps, Chunk& out)
 
 }  // namespace
 
-std::vector<std::uint32_t> load_input(std::span<const Polygon> input, Tree& tree, FragmentStore& store) {
+std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree, FragmentStore& store) {
   for (const auto& poly : input)
     for (const auto& v : poly.verts) tree.bounds.add(v.p);
   tree.tol = Tolerance::for_extent(tree.bounds.diagonal());

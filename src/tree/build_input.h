@@ -5,12 +5,13 @@
 #include <vector>
 
 #include "split/fragment_store.h"
+#include "tree/draft.h"
 #include "tree/tree.h"
 
 namespace bsp {
 
 // Sets tree.bounds, tree.tol and the input counters of tree.stats; returns the ids of the usable
 // input fragments in input order (slivers dropped and non-planar polygons fan-triangulated).
-std::vector<std::uint32_t> load_input(std::span<const Polygon> input, Tree& tree, FragmentStore& store);
+std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree, FragmentStore& store);
 
 }  // namespace bsp

@@ -53,7 +53,7 @@ class Walker {
       stack_.pop_back();
       if (shot_.hit && s.t0 >= shot_.hit->t) continue;
       if (s.stored_only) {
-        test_fragments(tree_.nodes[s.node]);
+        test_fragments(s.node);
         continue;
       }
       visit(s);
@@ -66,7 +66,7 @@ class Walker {
     ++shot_.nodes_visited;
     const Node& node = tree_.nodes[s.node];
     if (node.is_cell_leaf()) {
-      test_fragments(node);
+      test_fragments(s.node);
       return;
     }
     const Plane& plane = tree_.planes[node.plane];
@@ -78,7 +78,7 @@ class Walker {
     const std::uint32_t last_side = front_first ? node.back : node.front;
     if (last_side != kNull && last.t0 <= last.t1) stack_.push_back({last_side, last.t0, last.t1, false});
     const bool near_plane = (da <= 0) != (db <= 0) || std::min(std::abs(da), std::abs(db)) <= tree_.tol.plane_eps;
-    if (node.count && near_plane) stack_.push_back({s.node, last.t0, last.t0, true});
+    if (tree_.fragments_of(s.node).size() > 0 && near_plane) stack_.push_back({s.node, last.t0, last.t0, true});
     if (first_side != kNull && first.t0 <= first.t1) stack_.push_back({first_side, first.t0, first.t1, false});
   }
 
@@ -91,10 +91,11 @@ class Walker {
     return r > 0 ? Segment{std::max(s.t0, edge), s.t1} : Segment{s.t0, std::min(s.t1, edge)};
   }
 
-  void test_fragments(const Node& node) {
-    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+  void test_fragments(std::uint32_t node) {
+    const FragmentRange r = tree_.fragments_of(node);
+    for (std::uint32_t i = r.begin; i < r.end; ++i) {
       ++shot_.fragment_tests;
-      const auto t = ray_polygon_hit(ray_, tree_.fragments[i], tree_.planes[tree_.fragment_plane[i]]);
+      const auto t = ray_polygon_hit(ray_, tree_.fragments.points(i), tree_.planes[tree_.fragment_plane[i]]);
       if (t && (!shot_.hit || *t < shot_.hit->t)) shot_.hit = RayHit{*t, i};
     }
   }
@@ -117,11 +118,10 @@ double plucker_side(const Ray& ray, const Vec3& a, const Vec3& b) {
 
 }  // namespace
 
-std::optional<double> ray_polygon_hit(const Ray& ray, const Polygon& poly, const Plane& support) {
-  const auto& v = poly.verts;
+std::optional<double> ray_polygon_hit(const Ray& ray, std::span<const Vec3> v, const Plane& support) {
   bool pos = true, neg = true;  // every Plücker product so far is >= 0 / <= 0
   for (std::size_t i = 0, k = v.size(); i < k && (pos || neg); ++i) {
-    const double s = plucker_side(ray, v[i].p, v[(i + 1) % k].p);
+    const double s = plucker_side(ray, v[i], v[(i + 1) % k]);
     pos &= s >= 0;
     neg &= s <= 0;
   }

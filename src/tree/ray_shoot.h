@@ -14,6 +14,7 @@
 // the same answer on every ray (ties aside): an independent check of the tree.
 #include <cstdint>
 #include <optional>
+#include <span>
 
 #include "geometry/ray.h"
 #include "tree/tree.h"
@@ -28,7 +29,7 @@ namespace bsp {
 // the cross product then only cancels down to the ray's distance from u, so a far eye looking at
 // a tiny fragment keeps the sign (the plain dir · ((a - o) × (b - o)) loses it to rounding of
 // |a - o|^2, at 5e4 units for a fragment 1e-4 wide).
-std::optional<double> ray_polygon_hit(const Ray& ray, const Polygon& poly, const Plane& support);
+std::optional<double> ray_polygon_hit(const Ray& ray, std::span<const Vec3> polygon, const Plane& support);
 
 struct RayShot {
   std::optional<RayHit> hit;         // the nearest fragment hit at t > 0

@@ -32,12 +32,13 @@ namespace detail {
 
 // Emits a coarse leaf's fragments in the order described above.
 template <class Emit>
-void emit_convex_leaf(const Tree& tree, const Node& node, const Vec3& eye, Order order, Emit& emit,
+void emit_convex_leaf(const Tree& tree, std::uint32_t node, const Vec3& eye, Order order, Emit& emit,
                       TraversalCounters& c) {
   const double eps = tree.tol.plane_eps;
+  const FragmentRange r = tree.fragments_of(node);
   // Pass 0 emits the fragments that face the eye when going back to front, pass 1 the others.
   for (int pass = 0; pass < 2; ++pass) {
-    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+    for (std::uint32_t i = r.begin; i < r.end; ++i) {
       ++c.plane_evals;
       const bool faces_eye = tree.planes[tree.fragment_plane[i]].distance(eye) >= -eps;
       const bool wanted = (pass == 0) == (faces_eye == (order == Order::BackToFront));
@@ -70,15 +71,17 @@ TraversalCounters walk(const Tree& tree, const Vec3& eye, Order order, Emit& emi
   while (!stack.empty()) {
     const std::uint32_t step = stack.back();
     stack.pop_back();
-    const Node& node = nodes[step & ~kEmitOnly];
+    const std::uint32_t index = step & ~kEmitOnly;
+    const Node& node = nodes[index];
     if (step & kEmitOnly) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) emit(i);
-      c.fragments_emitted += node.count;
+      const FragmentRange r = tree.fragments_of(index);
+      for (std::uint32_t i = r.begin; i < r.end; ++i) emit(i);
+      c.fragments_emitted += r.size();
       continue;
     }
     ++c.nodes_visited;
     if (node.is_cell_leaf()) {
-      emit_convex_leaf(tree, node, eye, order, emit, c);
+      emit_convex_leaf(tree, index, eye, order, emit, c);
       continue;
     }
     const Plane& plane = tree.planes[node.plane];
@@ -95,7 +98,7 @@ TraversalCounters walk(const Tree& tree, const Vec3& eye, Order order, Emit& emi
     const std::uint32_t first = back_first ? node.back : node.front;
     const std::uint32_t last = back_first ? node.front : node.back;
     if (last != kNull) stack.push_back(last);
-    if (node.count > 0) stack.push_back(step | kEmitOnly);
+    if (tree.fragments_of(index).size() > 0) stack.push_back(step | kEmitOnly);
     if (first != kNull) stack.push_back(first);
   }
   return c;

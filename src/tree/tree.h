@@ -1,6 +1,7 @@
 #pragma once
-// A frozen BSP tree: nodes in one flat array linked by indices, planes in a pool, fragments grouped
-// by the node that stores them. Built in scratch memory by build.h, never modified afterwards.
+// A frozen BSP tree: nodes in one flat array linked by indices, planes in a pool, fragments in flat
+// arrays grouped by the node that stores them. Built in scratch memory by build.h, never modified
+// afterwards.
 //
 // Shapes ([AlphaBSP]):
 //  - Strict: every node has a partitioning plane and stores the fragments coplanar with it
@@ -12,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/fragment_array.h"
 #include "geometry/plane.h"
 #include "geometry/polygon.h"
 #include "geometry/tolerance.h"
@@ -22,15 +24,22 @@ inline constexpr std::uint32_t kNull = 0xffffffffu;
 
 enum class Shape : std::uint8_t { Strict, Coarse };
 
+// 16 bytes. Nodes are stored in pre-order (front child first) and fragments in node order, so a
+// node's fragments run from its `first` to the next node's (Tree::fragments_of).
 struct Node {
   std::uint32_t plane = kNull;  // pooled plane; kNull for a coarse leaf
   std::uint32_t front = kNull;  // child in the plane's front half-space
   std::uint32_t back = kNull;
-  std::uint32_t first = 0;      // fragments [first, first + count) of Tree::fragments
-  std::uint32_t count = 0;
+  std::uint32_t first = 0;      // its first fragment in Tree::fragments
 
   bool is_cell_leaf() const { return plane == kNull; }
   bool has_children() const { return front != kNull || back != kNull; }
+};
+
+// Fragment indices [begin, end).
+struct FragmentRange {
+  std::uint32_t begin = 0, end = 0;
+  std::uint32_t size() const { return end - begin; }
 };
 
 // What the build did besides making nodes. The exact identity
@@ -50,10 +59,12 @@ struct BuildStats {
   double build_seconds = 0.0;
 };
 
+// Built in scratch memory (tree/draft.h) and frozen; never modified afterwards. Traversal reads
+// nodes, planes and fragment_plane; vertices are read only by queries that need the geometry.
 struct Tree {
   std::vector<Node> nodes;  // nodes[0] is the root; empty for an empty input
   PlanePool planes;
-  std::vector<Polygon> fragments;
+  FragmentArray fragments;
   std::vector<std::uint32_t> fragment_plane;  // parallel to fragments: each one's supporting plane
   Shape shape = Shape::Strict;
   Tolerance tol;
@@ -61,19 +72,13 @@ struct Tree {
   BuildStats stats;
 
   bool empty() const { return nodes.empty(); }
-  // The last step of every build: puts the nodes in pre-order (front child first) and the fragments
-  // in node order, whatever order the build made them in (subtrees built in parallel are appended
-  // as they finish); then renumbers the plane pool in the order nodes use their planes, so
-  // a traversal (which visits nodes in near their stored order) reads the pool front to back
-  // instead of at random; planes no node or fragment uses are dropped. Orientation and sharing are
-  // kept: a node and a fragment on one plane still have indices equal up to the low bit.
-  void freeze();
-  // The bytes of what the tree stores (sizes, not capacities), so the count is the same with any
-  // standard library's growth policy and can be compared exactly.
+  FragmentRange fragments_of(std::uint32_t node) const {
+    const auto end = node + 1 < nodes.size() ? nodes[node + 1].first : static_cast<std::uint32_t>(fragments.size());
+    return {nodes[node].first, end};
+  }
+  // The bytes of what the tree stores, the plane pool included (sizes, not capacities), so the
+  // count is the same with any standard library's growth policy and can be compared exactly.
   std::size_t bytes() const;
-
- private:
-  void order_nodes();
 };
 
 }  // namespace bsp

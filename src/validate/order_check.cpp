@@ -182,14 +182,15 @@ OrderCheck check_order(const EmbreeScene& scene, std::span<const Ray> rays,
 ValidationReport validate_tree(const Tree& tree, const ValidationSettings& settings) {
   const auto start = Clock::now();
   ValidationReport r;
-  const EmbreeScene scene(tree.fragments, tree.tol.plane_eps);
+  const std::vector<Polygon> fragments = tree.fragments.to_polygons();
+  const EmbreeScene scene(fragments, tree.tol.plane_eps);
   r.fragments = tree.fragments.size();
   r.plane_eps = scene.plane_eps();
   const auto cast_start = Clock::now();
   const std::vector<Vec3> eyes = validation_eyes(tree.bounds, settings.views);
   for (std::size_t v = 0; v < eyes.size(); ++v) {
     const auto order = visibility_order(tree, eyes[v], Order::BackToFront);
-    const auto rays = validation_rays(tree.fragments, tree.bounds, eyes[v], settings);
+    const auto rays = validation_rays(fragments, tree.bounds, eyes[v], settings);
     accumulate(r, check_order(scene, rays, order), static_cast<int>(v));
   }
   set_timing(r, start, cast_start);

@@ -61,10 +61,11 @@ RayShootCheck check_ray_shooting(const Tree& tree, const EmbreeScene& embree, st
 }
 
 RayShootCheck check_ray_shooting(const Tree& tree, const ValidationSettings& settings) {
-  const EmbreeScene embree(tree.fragments, tree.tol.plane_eps);
+  const std::vector<Polygon> fragments = tree.fragments.to_polygons();
+  const EmbreeScene embree(fragments, tree.tol.plane_eps);
   std::vector<Ray> rays;
   for (const Vec3& eye : validation_eyes(tree.bounds, settings.views)) {
-    const std::vector<Ray> more = validation_rays(tree.fragments, tree.bounds, eye, settings);
+    const std::vector<Ray> more = validation_rays(fragments, tree.bounds, eye, settings);
     rays.insert(rays.end(), more.begin(), more.end());
   }
   return check_ray_shooting(tree, embree, rays);

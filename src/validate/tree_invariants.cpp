@@ -58,8 +58,8 @@ class Checker {
       fail("split identity broken: splits=" + std::to_string(st.splits) + " fragments=" + std::to_string(f));
     double total = 0;
     std::vector<double> per_source(input.size(), 0.0);
-    for (const auto& frag : tree_.fragments) {
-      const double a = area(frag);
+    for (const FragmentView frag : tree_.fragments) {
+      const double a = area(frag.polygon());
       total += a;
       if (frag.source < per_source.size()) per_source[frag.source] += a;
       else fail("fragment source out of range");
@@ -79,13 +79,14 @@ class Checker {
   void check_node_fragments(std::uint32_t index, const Node& node, const std::vector<std::uint32_t>& path,
                             std::vector<std::uint8_t>& covered) {
     const double eps = tree_.tol.plane_eps;
-    if (static_cast<std::uint64_t>(node.first) + node.count > tree_.fragments.size()) {
-      fail("node " + std::to_string(index) + " fragment range out of bounds");
+    const FragmentRange r = tree_.fragments_of(index);
+    if (r.begin > r.end || r.end > tree_.fragments.size()) {
+      fail("node " + std::to_string(index) + " fragment range out of bounds (nodes not in pre-order)");
       return;
     }
-    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+    for (std::uint32_t i = r.begin; i < r.end; ++i) {
       ++covered[i];
-      const Polygon& frag = tree_.fragments[i];
+      const Polygon frag = tree_.fragments[i].polygon();
       check_shape(i, frag);
       for (auto p : path)
         if (!in_front_or_on(frag, tree_.planes[p], eps))
@@ -93,7 +94,7 @@ class Checker {
       if (!node.is_cell_leaf() && classify(frag, tree_.planes[node.plane], eps) != Side::Coplanar)
         fail("fragment " + std::to_string(i) + " stored at node " + std::to_string(index) + " is not coplanar with it");
     }
-    if (node.is_cell_leaf()) check_convex_leaf(index, node);
+    if (node.is_cell_leaf()) check_convex_leaf(index, r);
   }
 
   // 5: no degenerate fragment: no two consecutive vertices within plane_eps, not a sliver.
@@ -107,11 +108,13 @@ class Checker {
       fail("fragment " + std::to_string(i) + " is a sliver (narrower than plane_eps)");
   }
 
-  void check_convex_leaf(std::uint32_t index, const Node& node) {
+  void check_convex_leaf(std::uint32_t index, FragmentRange r) {
     const double eps = tree_.tol.plane_eps;
-    for (std::uint32_t a = node.first; a < node.first + node.count; ++a)
-      for (std::uint32_t b = node.first; b < node.first + node.count; ++b)
-        if (a != b && !in_front_or_on(tree_.fragments[b], tree_.planes[tree_.fragment_plane[a]], eps)) {
+    std::vector<Polygon> leaf;
+    for (std::uint32_t i = r.begin; i < r.end; ++i) leaf.push_back(tree_.fragments[i].polygon());
+    for (std::uint32_t a = r.begin; a < r.end; ++a)
+      for (std::uint32_t b = r.begin; b < r.end; ++b)
+        if (a != b && !in_front_or_on(leaf[b - r.begin], tree_.planes[tree_.fragment_plane[a]], eps)) {
           fail("coarse leaf " + std::to_string(index) + " is not a convex set");
           return;
         }
