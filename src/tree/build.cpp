@@ -353,6 +353,10 @@ void build_recursive(TreeDraft& tree, FragmentStore& store, Splitter& splitter, 
   std::vector<std::unique_ptr<Task>> tasks;
   const std::size_t min_task = std::max<std::size_t>(options.min_task_fragments, 1);
   const std::size_t max_task = tree.stats.n_input / std::max<std::size_t>(options.task_share, 1);
+  if (max_task < min_task) {  // no subtree can become a task: no thread team to start and idle
+    RecursiveBuilder(tree, store, splitter, {}, nullptr).run(WorkItem{std::move(ids)});
+    return;
+  }
 #pragma omp parallel default(none) shared(tree, store, splitter, ids, tasks, min_task, max_task)
 #pragma omp single
   RecursiveBuilder(tree, store, splitter, {}, &tasks, min_task, max_task).run(WorkItem{std::move(ids)});
