@@ -103,6 +103,7 @@ RegressResult compare_benchmarks(const nlohmann::json& baseline, const nlohmann:
                                  const RegressOptions& options) {
   if (!(options.time_tolerance > 1.0)) throw UsageError("the time tolerance must be > 1");
   RegressResult result;
+  result.benchmarks = true;
   const auto base = by_name(baseline), cur = by_name(current);
   for (const auto& [name, b] : base) {
     BenchComparer c{result, options, name};

@@ -193,9 +193,11 @@ void print_regress(const RegressResult& result, std::ostream& out) {
   };
   if (!result.changes.empty()) row("verdict", "change", "run", "field", "baseline", "current");
   for (const auto& c : result.changes) row(c.regression ? "FAIL   " : "note   ", c.what, c.run, c.field, c.baseline, c.current);
-  out << "regress: " << result.runs_compared << " runs, " << result.values_compared << " values, "
-      << result.timing_groups << " build-time groups (" << result.timing_samples << " samples) compared; "
-      << (result.failed() ? "REGRESSION" : "no regression") << "\n";
+  out << "regress: " << result.runs_compared << (result.benchmarks ? " benchmarks, " : " runs, ")
+      << result.values_compared << " values";
+  if (!result.benchmarks)
+    out << ", " << result.timing_groups << " build-time groups (" << result.timing_samples << " samples)";
+  out << " compared; " << (result.failed() ? "REGRESSION" : "no regression") << "\n";
 }
 
 }  // namespace bsp::sweep

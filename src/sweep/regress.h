@@ -57,6 +57,7 @@ struct RegressResult {
   std::uint64_t values_compared = 0;
   std::uint64_t timing_groups = 0;   // groups whose build times were tested
   std::uint64_t timing_samples = 0;  // current build samples in those groups
+  bool benchmarks = false;           // runs are benchmarks of two Google Benchmark outputs (bench_gate.h)
   bool failed() const;
 };
 
