@@ -44,7 +44,7 @@ FragmentArray replaced(const FragmentArray& a, std::size_t i, const Polygon& pol
   FragmentArray out;
   for (std::size_t k = 0; k < a.size(); ++k) {
     if (k == i) out.push_back(poly);
-    else out.push_back(a[k]);
+    else out.push_back(a[k].polygon());
   }
   return out;
 }

@@ -52,17 +52,6 @@ void FragmentArray::push_back(const Polygon& poly) {
   source_.push_back(poly.source);
 }
 
-void FragmentArray::push_back(const FragmentView& f) {
-  if (uv_.empty() && !f.uv.empty()) start_tex_coords();
-  points_.insert(points_.end(), f.p.begin(), f.p.end());
-  if (!uv_.empty()) {
-    if (f.uv.empty()) uv_.resize(points_.size());
-    else uv_.insert(uv_.end(), f.uv.begin(), f.uv.end());
-  }
-  start_.push_back(static_cast<std::uint32_t>(points_.size()));
-  source_.push_back(f.source);
-}
-
 std::vector<Polygon> FragmentArray::to_polygons() const {
   std::vector<Polygon> out;
   out.reserve(size());

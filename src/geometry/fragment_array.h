@@ -36,14 +36,13 @@ class FragmentArray {
   bool has_tex_coords() const { return !uv_.empty(); }
 
   FragmentView operator[](std::size_t i) const {
-    const std::size_t b = start_[i], e = start_[i + 1];
-    return {std::span<const Vec3>(points_).subspan(b, e - b),
-            uv_.empty() ? std::span<const TexCoord>() : std::span<const TexCoord>(uv_).subspan(b, e - b), source_[i]};
+    const std::span<const TexCoord> uv =
+        uv_.empty() ? std::span<const TexCoord>() : std::span<const TexCoord>(uv_).subspan(start_[i], start_[i + 1] - start_[i]);
+    return {points(i), uv, source_[i]};
   }
   std::span<const Vec3> points(std::size_t i) const {
     return std::span<const Vec3>(points_).subspan(start_[i], start_[i + 1] - start_[i]);
   }
-  std::uint32_t source(std::size_t i) const { return source_[i]; }
 
   void reserve(std::size_t fragments, std::size_t vertices);
   // Bulk packing, for writers that fill the fragments in any order (and on any thread): lays out
@@ -52,7 +51,6 @@ class FragmentArray {
   void lay_out(std::span<const std::uint32_t> vertex_counts, std::span<const std::uint32_t> sources, bool tex_coords);
   void write(std::size_t i, const Polygon& poly);
   void push_back(const Polygon& poly);
-  void push_back(const FragmentView& f);
   std::vector<Polygon> to_polygons() const;
   // The bytes stored (sizes, not capacities).
   std::size_t bytes() const;

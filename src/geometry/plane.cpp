@@ -1,6 +1,5 @@
 #include "geometry/plane.h"
 
-#include <algorithm>
 #include <bit>
 
 namespace bsp {

@@ -34,7 +34,7 @@ class PlanePool {
   std::uint32_t add(const Plane& p);
   // Appends a plane known to be in neither orientation yet, as the next pair; returns its even index.
   // The lookup table is brought up to date by the next add(), so a pool rebuilt from distinct planes
-  // (Tree::freeze) costs no hashing unless planes are added later.
+  // (freeze, tree/draft.h) costs no hashing unless planes are added later.
   std::uint32_t append_distinct(const Plane& p);
   // Room for this many pairs without growing the table.
   void reserve(std::size_t pairs);
