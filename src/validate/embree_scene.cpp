@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "geometry/plane.h"
 #include "geometry/tolerance.h"
@@ -25,19 +26,25 @@ constexpr double kMiterLimit = 8.0;
 // a hit on the box's boundary.
 constexpr double kStartMargin = 1e-3;
 
+// Rays per Embree packet: rtcIntersect16, the widest packet, which this CPU's AVX-512 kernels trace
+// natively; the validation rays of one view come in runs that point nearly the same way.
+constexpr std::size_t kPacket = 16;
+
 // The intersect context extended with the output (FACTS.md: Embree passes our context pointer to
 // the filter, so a struct that starts with RTCIntersectContext can carry more).
 struct RecordingContext {
   RTCIntersectContext base;
-  std::vector<unsigned>* prims;
+  std::vector<std::uint64_t>* keys;
 };
 
-// Records every candidate triangle and rejects it, so traversal visits the whole ray.
+// Records every candidate as (ray id << 32 | triangle) and rejects it, so traversal visits every
+// ray to its end. Nothing else happens here: the filter runs once per candidate.
 void record_and_reject(const RTCFilterFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<RecordingContext*>(args->context);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
-    ctx->prims->push_back(RTCHitN_primID(args->hit, args->N, i));
+    ctx->keys->push_back((std::uint64_t{RTCRayN_id(args->ray, args->N, i)} << 32) |
+                         RTCHitN_primID(args->hit, args->N, i));
     args->valid[i] = 0;
   }
 }
@@ -127,6 +134,8 @@ struct EmbreeScene::Impl {
   std::vector<Plane> plane;              // per fragment, unit normal; n = 0 for zero area
   std::vector<Vec3> center;              // per fragment, its vertex average
   std::vector<double> reach;             // per fragment, its farthest vertex from `center`
+  std::vector<double> near2;             // per fragment, (reach + inside_slack)^2
+  std::vector<Vec3> inward;              // per vertex, the unit in-plane normal of the edge it starts, pointing inside; 0 for a zero-length edge
   std::vector<std::uint32_t> fragment;   // per Embree triangle (primID)
   double eps = 0.0;                      // plane_eps of the fragments
   double inside_slack = 0.0;             // kInsideEps * eps
@@ -138,13 +147,13 @@ struct EmbreeScene::Impl {
 
   void store(std::span<const Polygon> polys);
   void build(double grow);
-  std::vector<unsigned> candidates(const Ray& ray) const;
-  std::optional<Hit> exact_hit(const Ray& ray, std::uint32_t f) const;
-  std::vector<Hit> hits(const Ray& ray) const;
+  void propose(std::span<const Ray> rays, std::size_t base, std::vector<std::uint64_t>& keys) const;
+  std::optional<Hit> exact_hit(const Ray& ray, double dir_length, std::uint32_t f) const;
+  void hits(std::span<const Ray> rays, HitBatch& out) const;
 
   std::span<const Vec3> verts(std::uint32_t f) const { return {points.data() + first[f], first[f + 1] - first[f]}; }
   double inside_distance(std::uint32_t f, const Vec3& x) const;
-  bool coplanar_at(const Ray& ray, const Hit& a, const Hit& b) const;
+  bool coplanar_at(double gap, const Hit& a, const Hit& b) const;
   bool touches_at(std::uint32_t f, const Vec3& xf, std::uint32_t g, const Vec3& xg, double radius) const;
 };
 
@@ -159,6 +168,11 @@ void EmbreeScene::Impl::store(std::span<const Polygon> polys) {
     for (const auto& v : p.verts) r = std::max(r, length(v.p - c));
     center.push_back(c);
     reach.push_back(r);
+    for (std::size_t i = 0; i < p.verts.size(); ++i) {
+      const Vec3 e = p.verts[(i + 1) % p.verts.size()].p - p.verts[i].p;
+      const double len = length(e);
+      inward.push_back(len > 0.0 ? cross(plane.back().n, e) / len : Vec3{});
+    }
   }
   first.push_back(static_cast<std::uint32_t>(points.size()));
   for (const Vec3& p : points) box.add(p);
@@ -201,29 +215,37 @@ void EmbreeScene::Impl::build(double grow) {
   check_device(device, "scene build");
 }
 
-// Embree's candidate triangles along the ray, from just before it enters the box.
-std::vector<unsigned> EmbreeScene::Impl::candidates(const Ray& ray) const {
-  std::vector<unsigned> prims;
-  const auto entry = box_entry(box, ray);
-  if (!entry || fragment.empty()) return prims;
-  const double start = std::max(0.0, *entry - kStartMargin * box.diagonal() / length(ray.dir));
+// Embree's candidate triangles along rays[base, base + kPacket), appended to `keys` as
+// (ray index << 32 | triangle); each ray starts just before it enters the box.
+void EmbreeScene::Impl::propose(std::span<const Ray> rays, std::size_t base,
+                                std::vector<std::uint64_t>& keys) const {
   RecordingContext ctx;
   rtcInitIntersectContext(&ctx.base);
-  ctx.prims = &prims;
-  RTCRayHit rh{};
-  const Vec3 o = ray.origin + ray.dir * start - offset;
-  rh.ray.org_x = static_cast<float>(o.x);
-  rh.ray.org_y = static_cast<float>(o.y);
-  rh.ray.org_z = static_cast<float>(o.z);
-  rh.ray.dir_x = static_cast<float>(ray.dir.x);
-  rh.ray.dir_y = static_cast<float>(ray.dir.y);
-  rh.ray.dir_z = static_cast<float>(ray.dir.z);
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = std::numeric_limits<float>::infinity();
-  rh.ray.mask = 0xffffffffu;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene, &ctx.base, &rh);
-  return prims;
+  ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  ctx.keys = &keys;
+  RTCRayHit16 rh{};
+  alignas(64) int valid[kPacket] = {};
+  bool any = false;
+  for (std::size_t lane = 0; lane < kPacket && base + lane < rays.size(); ++lane) {
+    const Ray& ray = rays[base + lane];
+    const auto entry = box_entry(box, ray);
+    if (!entry) continue;
+    const double start = std::max(0.0, *entry - kStartMargin * box.diagonal() / length(ray.dir));
+    const Vec3 o = ray.origin + ray.dir * start - offset;
+    rh.ray.org_x[lane] = static_cast<float>(o.x);
+    rh.ray.org_y[lane] = static_cast<float>(o.y);
+    rh.ray.org_z[lane] = static_cast<float>(o.z);
+    rh.ray.dir_x[lane] = static_cast<float>(ray.dir.x);
+    rh.ray.dir_y[lane] = static_cast<float>(ray.dir.y);
+    rh.ray.dir_z[lane] = static_cast<float>(ray.dir.z);
+    rh.ray.tfar[lane] = std::numeric_limits<float>::infinity();
+    rh.ray.mask[lane] = 0xffffffffu;
+    rh.ray.id[lane] = static_cast<unsigned>(base + lane);
+    rh.hit.geomID[lane] = RTC_INVALID_GEOMETRY_ID;
+    valid[lane] = -1;
+    any = true;
+  }
+  if (any) rtcIntersect16(valid, scene, &ctx.base, &rh);
 }
 
 double distance_to_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
@@ -239,12 +261,10 @@ double distance_to_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
 // count.
 double EmbreeScene::Impl::inside_distance(std::uint32_t f, const Vec3& x) const {
   const std::span<const Vec3> v = verts(f);
+  const Vec3* m = inward.data() + first[f];
   double least = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Vec3 e = v[(i + 1) % v.size()] - v[i];
-    const double len = length(e);
-    if (len > 0.0) least = std::min(least, dot(cross(e, x - v[i]), plane[f].n) / len);
-  }
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (m[i] != Vec3{}) least = std::min(least, dot(m[i], x - v[i]));
   if (least >= 0.0) return least;
   double nearest = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < v.size(); ++i) nearest = std::min(nearest, distance_to_segment(x, v[i], v[(i + 1) % v.size()]));
@@ -252,7 +272,7 @@ double EmbreeScene::Impl::inside_distance(std::uint32_t f, const Vec3& x) const 
 }
 
 // The double-precision decision (header, step 2).
-std::optional<Hit> EmbreeScene::Impl::exact_hit(const Ray& ray, std::uint32_t f) const {
+std::optional<Hit> EmbreeScene::Impl::exact_hit(const Ray& ray, double dir_length, std::uint32_t f) const {
   const Plane& p = plane[f];
   const double denom = dot(p.n, ray.dir);
   if (denom == 0.0) return std::nullopt;
@@ -262,23 +282,19 @@ std::optional<Hit> EmbreeScene::Impl::exact_hit(const Ray& ray, std::uint32_t f)
   // Farther than reach + slack from the centre is farther than the slack from the polygon: the
   // same answer as inside_distance, without walking the edges (most of Embree's candidates on
   // scenes with features far below float resolution, such as near-degenerate).
-  if (length(x - center[f]) > reach[f] + inside_slack) return std::nullopt;
+  const Vec3 from_center = x - center[f];
+  if (dot(from_center, from_center) > near2[f]) return std::nullopt;
   const double inside = inside_distance(f, x);
   if (inside < -inside_slack) return std::nullopt;
-  const double grazing = std::min(length(ray.dir) / std::abs(denom), kMaxGrazingScale);
-  return Hit{{t, f}, inside_slack + eps * grazing, inside};
+  const double grazing = std::min(dir_length / std::abs(denom), kMaxGrazingScale);
+  return Hit{{t, f}, t * dir_length, inside_slack + eps * grazing, inside, grazing};
 }
 
 // Whether, where the ray meets them, the two hits lie within 2 eps of each other across one of the
-// fragments' planes (the sine floored by the grazing cap): both within eps of one plane, on which a
-// BSP may file both.
-bool EmbreeScene::Impl::coplanar_at(const Ray& ray, const Hit& a, const Hit& b) const {
-  const double gap = std::abs(b.t - a.t) * length(ray.dir);
-  const auto within = [&](std::uint32_t f) {
-    const double sine = std::abs(dot(plane[f].n, ray.dir)) / length(ray.dir);
-    return gap * std::max(sine, 1.0 / kMaxGrazingScale) <= 2.0 * eps * (1.0 + kRoundingRelative);
-  };
-  return within(a.fragment) || within(b.fragment);
+// fragments' planes: the gap along the ray times the sine (floored by the grazing cap), that is
+// divided by `grazing`. Both are then within eps of one plane, on which a BSP may file both.
+bool EmbreeScene::Impl::coplanar_at(double gap, const Hit& a, const Hit& b) const {
+  return gap <= 2.0 * eps * (1.0 + kRoundingRelative) * std::max(a.grazing, b.grazing);
 }
 
 // Whether some edge of f passes within `radius` of xf at a point c that lies within eps of g's
@@ -298,18 +314,33 @@ bool EmbreeScene::Impl::touches_at(std::uint32_t f, const Vec3& xf, std::uint32_
   return false;
 }
 
-std::vector<Hit> EmbreeScene::Impl::hits(const Ray& ray) const {
-  std::vector<unsigned> prims = candidates(ray);
-  std::vector<std::uint32_t> frags;
-  frags.reserve(prims.size());
-  for (unsigned prim : prims) frags.push_back(fragment[prim]);
-  std::sort(frags.begin(), frags.end());
-  frags.erase(std::unique(frags.begin(), frags.end()), frags.end());
-  std::vector<Hit> out;
-  for (std::uint32_t f : frags)
-    if (const auto hit = exact_hit(ray, f)) out.push_back(*hit);
-  std::sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) { return a.t != b.t ? a.t < b.t : a.fragment < b.fragment; });
-  return out;
+// Embree's candidates, grouped by ray (a counting sort on the ray index), turned into fragments and
+// deduplicated (a fragment is several triangles, and Embree may report one triangle twice), then
+// decided in double; each ray's hits sorted by (t, fragment).
+void EmbreeScene::Impl::hits(std::span<const Ray> rays, HitBatch& out) const {
+  out.keys.clear();
+  out.hits.clear();
+  if (!fragment.empty())
+    for (std::size_t base = 0; base < rays.size(); base += kPacket) propose(rays, base, out.keys);
+  out.first.assign(rays.size() + 1, 0);
+  for (std::uint64_t k : out.keys) ++out.first[(k >> 32) + 1];
+  for (std::size_t r = 0; r < rays.size(); ++r) out.first[r + 1] += out.first[r];
+  out.frags.resize(out.keys.size());
+  for (std::uint64_t k : out.keys) out.frags[out.first[k >> 32]++] = fragment[static_cast<std::uint32_t>(k)];
+  std::uint32_t begin = 0;
+  for (std::size_t r = 0; r < rays.size(); ++r) {
+    const std::uint32_t end = out.first[r];
+    out.first[r] = static_cast<std::uint32_t>(out.hits.size());
+    const auto f0 = out.frags.begin() + begin, f1 = out.frags.begin() + end;
+    const double dir_length = length(rays[r].dir);
+    std::sort(f0, f1);
+    for (auto f = f0; f != f1; f = std::upper_bound(f, f1, *f))
+      if (const auto hit = exact_hit(rays[r], dir_length, *f)) out.hits.push_back(*hit);
+    std::sort(out.hits.begin() + out.first[r], out.hits.end(),
+              [](const Hit& a, const Hit& b) { return a.t != b.t ? a.t < b.t : a.fragment < b.fragment; });
+    begin = end;
+  }
+  out.first[rays.size()] = static_cast<std::uint32_t>(out.hits.size());
 }
 
 EmbreeScene::EmbreeScene(std::span<const Polygon> fragments, std::optional<double> plane_eps)
@@ -320,6 +351,7 @@ EmbreeScene::EmbreeScene(std::span<const Polygon> fragments, std::optional<doubl
   const double grow = kGrowRelative * diagonal;
   impl_->eps = plane_eps.value_or(Tolerance::for_extent(diagonal).plane_eps);
   impl_->inside_slack = kInsideEps * impl_->eps;
+  for (double r : impl_->reach) impl_->near2.push_back((r + impl_->inside_slack) * (r + impl_->inside_slack));
   if (!impl_->box.empty()) impl_->box = {impl_->box.lo - Vec3{grow, grow, grow}, impl_->box.hi + Vec3{grow, grow, grow}};
   impl_->build(grow);
 }
@@ -328,10 +360,16 @@ EmbreeScene::~EmbreeScene() = default;
 EmbreeScene::EmbreeScene(EmbreeScene&&) noexcept = default;
 EmbreeScene& EmbreeScene::operator=(EmbreeScene&&) noexcept = default;
 
-std::vector<Hit> EmbreeScene::all_hits(const Ray& ray) const { return impl_->hits(ray); }
+std::vector<Hit> EmbreeScene::all_hits(const Ray& ray) const {
+  HitBatch batch;
+  impl_->hits({&ray, 1}, batch);
+  return std::move(batch.hits);
+}
+
+void EmbreeScene::all_hits(std::span<const Ray> rays, HitBatch& out) const { impl_->hits(rays, out); }
 
 std::optional<Hit> EmbreeScene::first_hit(const Ray& ray) const {
-  const std::vector<Hit> hits = impl_->hits(ray);
+  const std::vector<Hit> hits = all_hits(ray);
   if (hits.empty()) return std::nullopt;
   return hits.front();
 }
@@ -347,19 +385,21 @@ std::optional<Hit> EmbreeScene::first_hit_exhaustive(const Ray& ray) const {
 
 std::optional<Hit> EmbreeScene::hit(const Ray& ray, std::uint32_t fragment) const {
   if (impl_->plane[fragment].n == Vec3{}) return std::nullopt;
-  return impl_->exact_hit(ray, fragment);
+  return impl_->exact_hit(ray, length(ray.dir), fragment);
 }
 
-// The edge reason needs one hit within the pair's radius of its fragment's boundary, so most pairs
-// skip its edge walk.
+// The edge reason needs the hits within twice the pair's radius of each other and one of them
+// within the radius of its fragment's boundary, so most pairs skip its edge walk.
 TieReason EmbreeScene::tie_reason(const Ray& ray, const Hit& a, const Hit& b) const {
   const double radius = a.radius + b.radius;
-  const Vec3 xa = ray.origin + ray.dir * a.t, xb = ray.origin + ray.dir * b.t;
-  if (length(xa - xb) <= 2.0 * radius && (a.inside <= radius || b.inside <= radius) &&
-      (impl_->touches_at(a.fragment, xa, b.fragment, xb, radius) ||
-       impl_->touches_at(b.fragment, xb, a.fragment, xa, radius)))
-    return TieReason::Edge;
-  if (impl_->coplanar_at(ray, a, b)) return TieReason::Coplanar;
+  const double gap = std::abs(b.depth - a.depth);
+  if (gap <= 2.0 * radius && (a.inside <= radius || b.inside <= radius)) {
+    const Vec3 xa = ray.origin + ray.dir * a.t, xb = ray.origin + ray.dir * b.t;
+    if (impl_->touches_at(a.fragment, xa, b.fragment, xb, radius) ||
+        impl_->touches_at(b.fragment, xb, a.fragment, xa, radius))
+      return TieReason::Edge;
+  }
+  if (impl_->coplanar_at(gap, a, b)) return TieReason::Coplanar;
   if (a.inside < 0.0 || b.inside < 0.0) return TieReason::Boundary;
   return TieReason::None;
 }
@@ -369,9 +409,8 @@ bool EmbreeScene::overlap_nearby(const Hit& a, const Hit& b) const {
   const Hit& out = a.inside < 0.0 ? a : b;
   const Hit& other = a.inside < 0.0 ? b : a;
   if (!(out.t > 0.0)) return false;
-  const double grazing = (other.radius - impl_->inside_slack) / impl_->eps;
-  if (grazing >= kMaxGrazingScale) return false;  // the sine is only bounded there, not known
-  const double moved = -out.inside * (other.t / out.t) * grazing;
+  if (other.grazing >= kMaxGrazingScale) return false;  // the sine is only bounded there, not known
+  const double moved = -out.inside * (other.t / out.t) * other.grazing;
   return other.inside > moved + impl_->inside_slack;
 }
 

@@ -2,8 +2,9 @@
 // An independent ray caster for checking BSP results: the fragments, fan-triangulated, in one
 // Embree scene. Embree never appears in this header (pimpl), so including it costs nothing.
 //
-// Technique (FACTS.md, Embree section): one rtcIntersect1 per ray with an intersection filter that
-// records every hit and rejects it, so traversal continues to the end of the ray. The scene is
+// Technique (FACTS.md, Embree section): rays are cast in packets of 16 (rtcIntersect16) with an
+// intersection filter that records every hit (ray id, primitive) and rejects it, so traversal
+// continues to the end of every ray. The scene is
 // built with RTC_SCENE_FLAG_ROBUST (without it ~10% of rays aimed at shared edges leak through).
 // Callbacks arrive in traversal order and may repeat a primitive, so candidates are deduplicated
 // per fragment and the hits sorted by t.
@@ -69,11 +70,24 @@ inline constexpr double kGrowRelative = 1e-4;
 
 // A hit as the checker decides it, with what it needs to judge ties.
 struct Hit : RayHit {
-  double radius = 0.0;  // the hit radius (header), world units
-  double inside = 0.0;  // distance of the hit point from the fragment's boundary, < 0 outside
+  double depth = 0.0;    // distance from the ray's origin, world units: t * |dir|
+  double radius = 0.0;   // the hit radius (header), world units
+  double inside = 0.0;   // distance of the hit point from the fragment's boundary, < 0 outside
+  double grazing = 1.0;  // 1 / sine of the angle between ray and fragment plane, capped at kMaxGrazingScale
 };
 
 enum class TieReason : std::uint8_t { None, Coplanar, Edge, Boundary };
+
+// The hits of a batch of rays. A caller keeps one per thread and passes it to every call, so casting
+// allocates nothing once the buffers have grown.
+struct HitBatch {
+  std::vector<Hit> hits;             // ray r's hits are hits[first[r], first[r + 1])
+  std::vector<std::uint32_t> first;  // one entry per ray, plus one
+  std::vector<std::uint64_t> keys;   // scratch: (ray << 32 | triangle) as Embree proposes them
+  std::vector<std::uint32_t> frags;  // scratch: the keys' fragments, grouped by ray
+
+  std::span<const Hit> of(std::size_t r) const { return {hits.data() + first[r], first[r + 1] - first[r]}; }
+};
 
 class EmbreeScene {
  public:
@@ -88,6 +102,9 @@ class EmbreeScene {
 
   // Every fragment the ray meets at t >= 0, once each, sorted by (t, fragment). Thread-safe.
   std::vector<Hit> all_hits(const Ray& ray) const;
+  // all_hits of every ray, into `out` (out.of(r) for rays[r]). Casting many rays at once lets Embree
+  // trace them as packets. Thread-safe with one HitBatch per thread.
+  void all_hits(std::span<const Ray> rays, HitBatch& out) const;
   // Exactly all_hits(ray).front(): the nearest hit (smallest fragment id on an exact tie). A
   // fragment tied with it (tie_reason) is equally entitled to be first. Thread-safe.
   std::optional<Hit> first_hit(const Ray& ray) const;
