@@ -56,6 +56,15 @@ std::vector<std::uint32_t> positions(std::span<const std::uint32_t> order, std::
   return pos;
 }
 
+// Sorts and deduplicates `keys` once they exceed `at`, then moves `at` to twice what is left: a view
+// with more distinct pairs than kCompactAt (a million fragments have millions) would otherwise sort
+// the whole list again after every batch.
+void compact_if_due(std::vector<std::uint64_t>& keys, std::size_t& at) {
+  if (keys.size() <= at) return;
+  sort_unique(keys);
+  at = std::max(kCompactAt, 2 * keys.size());
+}
+
 // Neighbouring rays meet the same pairs (on random-triangles 2000, 9 hit pairs in 10 repeat a pair
 // already seen), so a small direct-mapped table of recently added keys drops most repeats before they
 // reach the key list. It only drops exact repeats: the set of keys is the same without it.
@@ -81,6 +90,7 @@ struct Tally {
   RecentKeys recent;                     // of `checked`
   std::vector<std::uint64_t> checked;    // unordered keys
   std::vector<std::uint64_t> violating;  // ordered keys (nearer, farther)
+  std::size_t compact_checked_at = kCompactAt, compact_violating_at = kCompactAt;
   std::uint64_t hits = 0, hit_pairs = 0, ties_coplanar = 0, ties_edge = 0, ties_boundary = 0;
 
   // Merges another thread's tally; both key lists must be sorted and free of repeats.
@@ -135,8 +145,8 @@ void check_batch(const EmbreeScene& scene, std::span<const Ray> rays, const std:
                  HitBatch& batch, Tally& tally) {
   scene.all_hits(rays, batch);
   for (std::size_t r = 0; r < rays.size(); ++r) check_ray(scene, rays[r], batch.of(r), pos, tally);
-  if (tally.checked.size() > kCompactAt) sort_unique(tally.checked);
-  if (tally.violating.size() > kCompactAt) sort_unique(tally.violating);
+  compact_if_due(tally.checked, tally.compact_checked_at);
+  compact_if_due(tally.violating, tally.compact_violating_at);
 }
 
 // Spreads the low 16 bits of x to the even bits.
