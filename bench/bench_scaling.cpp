@@ -20,6 +20,7 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include <omp.h>
 
@@ -27,6 +28,7 @@
 #include "metrics/statistics.h"
 #include "metrics/traversal_cost.h"
 #include "references.h"
+#include "resident_memory.h"
 #include "split/registry.h"
 #include "tree/build.h"
 #include "tree/traverse.h"
@@ -61,8 +63,24 @@ std::map<std::string, double>& one_thread_medians() {
   return medians;
 }
 
+// How far the resident memory rose above where it started during one build, the finished tree
+// included (resident_memory.h); measured on a build of its own, before the timed ones.
+std::optional<std::uint64_t> build_peak_bytes(const Scene& s, const std::string& h) {
+  const auto before = restart_peak();
+  if (!before) return std::nullopt;
+  {
+    auto splitter = make_splitter(h, {}, kSeed);
+    const Tree t = build_tree(s.polygons, *splitter);
+    benchmark::DoNotOptimize(t.nodes.data());
+  }
+  const auto peak = peak_resident();
+  if (!peak) return std::nullopt;
+  return *peak - *before;
+}
+
 void bm_build_vs_embree(benchmark::State& state, const Scene* s, std::string h, std::string tail, int threads) {
   omp_set_num_threads(threads);
+  const auto peak = build_peak_bytes(*s, h);
   std::vector<double> times;
   for (auto _ : state) {
     const auto start = Clock::now();
@@ -82,6 +100,7 @@ void bm_build_vs_embree(benchmark::State& state, const Scene* s, std::string h, 
   if (threads == 1) one_thread_medians()[tail] = build;
   else if (auto it = one_thread_medians().find(tail); it != one_thread_medians().end())
     state.counters["speedup"] = it->second / build;
+  if (peak) state.counters["build_peak_vs_tree"] = static_cast<double>(*peak) / static_cast<double>(t.bytes());
   state.counters["bytes_per_fragment"] =
       t.fragments.empty() ? 0.0 : static_cast<double>(t.bytes()) / static_cast<double>(t.fragments.size());
 }

@@ -1,5 +1,7 @@
 #include "geometry/fragment_array.h"
 
+#include <algorithm>
+
 namespace bsp {
 
 Polygon FragmentView::polygon() const {
@@ -33,6 +35,11 @@ void FragmentArray::write(std::size_t i, const Polygon& poly) {
     if (!uv_.empty()) uv_[at] = {static_cast<float>(v.u), static_cast<float>(v.v)};
     ++at;
   }
+}
+
+void FragmentArray::write(std::size_t i, const FragmentView& f) {
+  std::copy(f.p.begin(), f.p.end(), points_.begin() + start_[i]);
+  if (!uv_.empty()) std::copy(f.uv.begin(), f.uv.end(), uv_.begin() + start_[i]);
 }
 
 void FragmentArray::start_tex_coords() { uv_.assign(points_.size(), TexCoord{}); }

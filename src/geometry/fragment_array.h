@@ -46,10 +46,12 @@ class FragmentArray {
 
   void reserve(std::size_t fragments, std::size_t vertices);
   // Bulk packing, for writers that fill the fragments in any order (and on any thread): lays out
-  // fragments with these vertex counts and sources, then write(i, poly) fills fragment i, whose
-  // polygon must have vertex_counts[i] vertices. Replaces the contents.
+  // fragments with these vertex counts and sources, then write(i, ...) fills fragment i, which must
+  // have vertex_counts[i] vertices (texture coordinates missing from a view are zero). Replaces the
+  // contents.
   void lay_out(std::span<const std::uint32_t> vertex_counts, std::span<const std::uint32_t> sources, bool tex_coords);
   void write(std::size_t i, const Polygon& poly);
+  void write(std::size_t i, const FragmentView& f);
   void push_back(const Polygon& poly);
   std::vector<Polygon> to_polygons() const;
   // The bytes stored (sizes, not capacities).

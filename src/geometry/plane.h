@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/page_allocator.h"
 #include "geometry/vec3.h"
 
 namespace bsp {
@@ -55,8 +56,8 @@ class PlanePool {
   void insert(std::uint32_t pair);
   void rehash(std::size_t pairs);  // a table for at least this many pairs, holding every plane
 
-  std::vector<Plane> planes_;
-  std::vector<std::uint32_t> slots_;
+  PageVector<Plane> planes_;  // page-allocated: a build drops a million-plane pool when it freezes
+  PageVector<std::uint32_t> slots_;
   std::size_t indexed_ = 0;  // planes_[0, indexed_) are in slots_
 };
 

@@ -40,10 +40,14 @@ double longest_edge(const Polygon& poly) {
   return best;
 }
 
-Side classify(const Polygon& poly, const Plane& plane, double eps) {
+namespace {
+
+// Both classifications for any vertex range; `at` gives a vertex's position.
+template <class Range, class At>
+Side classify_range(const Range& verts, At at, const Plane& plane, double eps) {
   bool front = false, back = false;
-  for (const auto& v : poly.verts) {
-    const double d = plane.distance(v.p);
+  for (const auto& v : verts) {
+    const double d = plane.distance(at(v));
     front |= d > eps;
     back |= d < -eps;
   }
@@ -53,10 +57,33 @@ Side classify(const Polygon& poly, const Plane& plane, double eps) {
   return Side::Coplanar;
 }
 
-bool in_front_or_on(const Polygon& poly, const Plane& plane, double eps) {
-  for (const auto& v : poly.verts)
-    if (plane.distance(v.p) < -eps) return false;
+template <class Range, class At>
+bool in_front_or_on_range(const Range& verts, At at, const Plane& plane, double eps) {
+  for (const auto& v : verts)
+    if (plane.distance(at(v)) < -eps) return false;
   return true;
+}
+
+// Lambdas, not functions: each has its own type, so the templates above inline them.
+constexpr auto vertex_position = [](const Vertex& v) -> const Vec3& { return v.p; };
+constexpr auto itself = [](const Vec3& p) -> const Vec3& { return p; };
+
+}  // namespace
+
+Side classify(const Polygon& poly, const Plane& plane, double eps) {
+  return classify_range(poly.verts, vertex_position, plane, eps);
+}
+
+Side classify(std::span<const Vec3> points, const Plane& plane, double eps) {
+  return classify_range(points, itself, plane, eps);
+}
+
+bool in_front_or_on(const Polygon& poly, const Plane& plane, double eps) {
+  return in_front_or_on_range(poly.verts, vertex_position, plane, eps);
+}
+
+bool in_front_or_on(std::span<const Vec3> points, const Plane& plane, double eps) {
+  return in_front_or_on_range(points, itself, plane, eps);
 }
 
 double merge_close_vertices(Polygon& poly, double eps) {
@@ -89,41 +116,53 @@ Vertex interpolate(const Vertex& a, const Vertex& b, double t) {
   return {lerp(a.p, b.p, t), a.u + (b.u - a.u) * t, a.v + (b.v - a.v) * t};
 }
 
-// Keeps a part, or drops it as a sliver and records that.
-void keep_or_drop(Polygon&& part, double eps, std::optional<Polygon>& slot, SplitResult& out) {
+// Keeps a part, or drops it as a sliver and records that; true when kept.
+bool keep_or_drop(Polygon& part, double eps, SplitKept& out) {
   out.dropped_area += merge_close_vertices(part, eps);
-  if (is_sliver(part, eps)) {
-    ++out.dropped;
-    out.dropped_area += part.verts.size() >= 3 ? area(part) : 0.0;
-    return;
-  }
-  slot = std::move(part);
+  if (!is_sliver(part, eps)) return true;
+  ++out.dropped;
+  out.dropped_area += part.verts.size() >= 3 ? area(part) : 0.0;
+  return false;
 }
 
 }  // namespace
 
-SplitResult split(const Polygon& poly, const Plane& plane, double eps) {
+SplitKept split_into(const Polygon& poly, const Plane& plane, double eps, Polygon& front, Polygon& back) {
   // eps decided that the polygon spans the plane; the cut itself goes by the true sign of each
   // distance, so the two parts partition the polygon exactly. (Sending every vertex within eps to
   // both parts would make them overlap wherever two such vertices are adjacent.)
   const std::size_t k = poly.verts.size();
-  std::vector<double> d(k);
-  for (std::size_t i = 0; i < k; ++i) d[i] = plane.distance(poly.verts[i].p);
-  Polygon front{{}, poly.source}, back{{}, poly.source};
+  front.verts.clear();
+  back.verts.clear();
+  front.source = back.source = poly.source;
+  double di = k > 0 ? plane.distance(poly.verts[0].p) : 0.0;
   for (std::size_t i = 0; i < k; ++i) {
     const std::size_t j = (i + 1) % k;
+    const double dj = plane.distance(poly.verts[j].p);
     const Vertex& a = poly.verts[i];
-    if (d[i] >= 0) front.verts.push_back(a);
-    if (d[i] <= 0) back.verts.push_back(a);
-    if ((d[i] > 0 && d[j] < 0) || (d[i] < 0 && d[j] > 0)) {
-      const Vertex x = interpolate(a, poly.verts[j], d[i] / (d[i] - d[j]));
+    if (di >= 0) front.verts.push_back(a);
+    if (di <= 0) back.verts.push_back(a);
+    if ((di > 0 && dj < 0) || (di < 0 && dj > 0)) {
+      const Vertex x = interpolate(a, poly.verts[j], di / (di - dj));
       front.verts.push_back(x);
       back.verts.push_back(x);
     }
+    di = dj;
   }
+  SplitKept kept;
+  kept.front = keep_or_drop(front, eps, kept);
+  kept.back = keep_or_drop(back, eps, kept);
+  return kept;
+}
+
+SplitResult split(const Polygon& poly, const Plane& plane, double eps) {
+  Polygon front, back;
+  const SplitKept kept = split_into(poly, plane, eps, front, back);
   SplitResult out;
-  keep_or_drop(std::move(front), eps, out.front, out);
-  keep_or_drop(std::move(back), eps, out.back, out);
+  out.dropped = kept.dropped;
+  out.dropped_area = kept.dropped_area;
+  if (kept.front) out.front = std::move(front);
+  if (kept.back) out.back = std::move(back);
   return out;
 }
 

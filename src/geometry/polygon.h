@@ -6,6 +6,7 @@
 // A vertex is ON the plane when |d_i| <= eps, FRONT when d_i > eps, BACK when d_i < -eps.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "geometry/plane.h"
@@ -34,8 +35,10 @@ std::optional<Plane> supporting_plane(const Polygon& poly);
 double longest_edge(const Polygon& poly);
 
 Side classify(const Polygon& poly, const Plane& plane, double eps);
+Side classify(std::span<const Vec3> points, const Plane& plane, double eps);
 // True when no vertex is behind the plane by more than eps (front or on it).
 bool in_front_or_on(const Polygon& poly, const Plane& plane, double eps);
+bool in_front_or_on(std::span<const Vec3> points, const Plane& plane, double eps);
 
 // Removes every vertex within eps of the vertex kept before it (and trailing ones within eps of the
 // first): two vertices closer than the tolerance are one point, and an edge that short has no
@@ -54,6 +57,15 @@ struct SplitResult {
 // Splits a polygon classified Spanning; both parts keep `source`. Each part is convex, and the
 // parts partition the polygon: vertices go by the exact sign of their distance.
 SplitResult split(const Polygon& poly, const Plane& plane, double eps);
+
+// split() into two polygons the caller owns, so a caller splitting many reuses their memory: both
+// are overwritten, and `front` / `back` say which parts were kept (not slivers).
+struct SplitKept {
+  bool front = false, back = false;
+  int dropped = 0;            // as SplitResult
+  double dropped_area = 0.0;  // as SplitResult
+};
+SplitKept split_into(const Polygon& poly, const Plane& plane, double eps, Polygon& front, Polygon& back);
 bool is_sliver(const Polygon& poly, double eps);
 
 }  // namespace bsp

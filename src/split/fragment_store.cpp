@@ -1,5 +1,8 @@
 #include "split/fragment_store.h"
 
+#include <limits>
+#include <stdexcept>
+
 namespace bsp {
 
 BoundingSphere bounding_sphere(const Polygon& poly) {
@@ -8,21 +11,121 @@ BoundingSphere bounding_sphere(const Polygon& poly) {
   return s;
 }
 
-std::uint32_t FragmentStore::add(Polygon&& poly, std::uint32_t plane) {
-  return add(std::move(poly), plane, bounding_sphere(poly));
+FragmentStore::Span FragmentStore::new_span(std::uint32_t count) {
+  live_vertices_ += count;
+  if (count < free_spans_.size() && !free_spans_[count].empty()) {
+    const std::uint32_t first = free_spans_[count].back();
+    free_spans_[count].pop_back();
+    return {first, count};
+  }
+  if (pos_.size() + count > std::numeric_limits<std::uint32_t>::max())
+    throw std::length_error("a build's fragments have more than 2^32 vertices");
+  const auto first = static_cast<std::uint32_t>(pos_.size());
+  pos_.resize(pos_.size() + count);
+  if (tex_) uv_.resize(pos_.size());
+  return {first, count};
 }
 
-std::uint32_t FragmentStore::add(Polygon&& poly, std::uint32_t plane, const BoundingSphere& s) {
-  polys_.push_back(std::move(poly));
+std::uint32_t FragmentStore::new_id(Span span, std::uint32_t source, std::uint32_t plane, const BoundingSphere& sphere) {
+  if (!free_ids_.empty()) {
+    const std::uint32_t id = free_ids_.back();
+    free_ids_.pop_back();
+    span_[id] = span;
+    source_[id] = source;
+    plane_[id] = plane;
+    sphere_[id] = sphere;
+    return id;
+  }
+  span_.push_back(span);
+  source_.push_back(source);
   plane_.push_back(plane);
-  sphere_.push_back(s);
-  return static_cast<std::uint32_t>(polys_.size() - 1);
+  sphere_.push_back(sphere);
+  return static_cast<std::uint32_t>(span_.size() - 1);
 }
 
-void FragmentStore::reserve(std::size_t n) {
-  polys_.reserve(n);
-  plane_.reserve(n);
-  sphere_.reserve(n);
+std::uint32_t FragmentStore::add(const Polygon& poly, std::uint32_t plane, const BoundingSphere& sphere) {
+  const Span s = new_span(static_cast<std::uint32_t>(poly.verts.size()));
+  for (std::uint32_t k = 0; k < s.count; ++k) {
+    const Vertex& v = poly.verts[k];
+    pos_[s.first + k] = v.p;
+    if (tex_) uv_[s.first + k] = {static_cast<float>(v.u), static_cast<float>(v.v)};
+  }
+  return new_id(s, poly.source, plane, sphere);
+}
+
+std::uint32_t FragmentStore::add(const FragmentView& f, std::uint32_t plane, const BoundingSphere& sphere) {
+  const Span s = new_span(static_cast<std::uint32_t>(f.size()));
+  std::copy(f.p.begin(), f.p.end(), pos_.begin() + s.first);
+  if (tex_) {
+    if (f.uv.empty()) std::fill_n(uv_.begin() + s.first, s.count, TexCoord{});
+    else std::copy(f.uv.begin(), f.uv.end(), uv_.begin() + s.first);
+  }
+  return new_id(s, f.source, plane, sphere);
+}
+
+void FragmentStore::release(std::uint32_t id) {
+  const Span s = span_[id];
+  live_vertices_ -= s.count;
+  if (s.count <= kReusedSpan) {
+    if (free_spans_.size() <= s.count) free_spans_.resize(s.count + 1);
+    free_spans_[s.count].push_back(s.first);
+  }
+  free_ids_.push_back(id);
+}
+
+void FragmentStore::reserve(std::size_t fragments, std::size_t vertices) {
+  span_.reserve(fragments);
+  source_.reserve(fragments);
+  plane_.reserve(fragments);
+  sphere_.reserve(fragments);
+  pos_.reserve(vertices);
+  if (tex_) uv_.reserve(vertices);
+}
+
+std::vector<std::uint32_t> FragmentStore::compact() {
+  std::vector<std::uint32_t> to_new(span_.size(), 0);
+  for (auto id : free_ids_) to_new[id] = kNone;
+  FragmentStore out(tex_);
+  out.reserve(span_.size() - free_ids_.size(), live_vertices_);
+  for (std::uint32_t id = 0; id < span_.size(); ++id)
+    if (to_new[id] != kNone) to_new[id] = out.add(view(id), plane_[id], sphere_[id]);
+  *this = std::move(out);
+  return to_new;
+}
+
+void FragmentStore::drop_build_data() {
+  free_memory(plane_);
+  free_memory(sphere_);
+  free_memory(free_ids_);
+  free_memory(free_spans_);
+}
+
+FragmentView FragmentStore::view(std::uint32_t id) const {
+  const Span s = span_[id];
+  const std::span<const TexCoord> uv = tex_ ? std::span<const TexCoord>(uv_.data() + s.first, s.count)
+                                            : std::span<const TexCoord>();
+  return {points(id), uv, source_[id]};
+}
+
+void FragmentStore::read(std::uint32_t id, Polygon& out) const {
+  const FragmentView f = view(id);
+  out.verts.resize(f.size());
+  for (std::size_t k = 0; k < f.size(); ++k)
+    out.verts[k] = f.uv.empty() ? Vertex{f.p[k]} : Vertex{f.p[k], f.uv[k].u, f.uv[k].v};
+  out.source = f.source;
+}
+
+FragmentStore::Parts FragmentStore::split(std::uint32_t id, const Plane& plane, double eps) {
+  read(id, whole_);
+  const std::uint32_t support = plane_[id];
+  release(id);
+  const SplitKept kept = split_into(whole_, plane, eps, front_, back_);
+  Parts parts;
+  parts.dropped = kept.dropped;
+  parts.dropped_area = kept.dropped_area;
+  if (kept.front) parts.front = add(front_, support);
+  if (kept.back) parts.back = add(back_, support);
+  return parts;
 }
 
 SideCounts FragmentStore::count_sides(std::span<const std::uint32_t> ids, const Plane& p, double eps) const {
@@ -46,7 +149,7 @@ bool is_convex_set(std::span<const std::uint32_t> ids, const FragmentStore& frag
       if (a == b) continue;
       const BoundingSphere& s = frags.sphere(b);
       if (pa.distance(s.center) - s.radius >= -eps) continue;
-      if (!in_front_or_on(frags.poly(b), pa, eps)) return false;
+      if (!in_front_or_on(frags.points(b), pa, eps)) return false;
     }
   }
   return true;

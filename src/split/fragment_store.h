@@ -1,11 +1,21 @@
 #pragma once
-// Scratch storage for fragments during a build: polygons with their pooled supporting planes and
-// bounding spheres in parallel arrays. The sphere lets most classifications decide with one
-// plane evaluation instead of one per vertex.
+// Scratch storage for the fragments of a build, in flat arrays: fragment `id`'s vertices are a span
+// of one array of positions (and of one array of float texture coordinates when the input has
+// any), with its source polygon, pooled supporting plane and bounding sphere in parallel arrays.
+// The sphere lets most classifications decide with one plane evaluation instead of one per vertex.
+//
+// Memory: splitting a fragment releases it. Its id goes to the next fragment added, and its vertex
+// span to the next fragment with as many vertices (up to kReusedSpan), so the arrays hold about the
+// fragments alive, not every fragment the build ever made, and nothing is allocated per fragment.
+// Ids and spans are reused in a fixed order: a build stays deterministic. The arrays give their
+// memory back to the system when freed (PageAllocator), so a finished task's store does not stay
+// resident until the build ends.
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "common/page_allocator.h"
+#include "geometry/fragment_array.h"
 #include "geometry/plane.h"
 #include "geometry/polygon.h"
 
@@ -25,15 +35,39 @@ struct SideCounts {
 
 class FragmentStore {
  public:
-  std::uint32_t add(Polygon&& poly, std::uint32_t plane);
-  // Adds a fragment whose bounding sphere is known (moved from another store).
-  std::uint32_t add(Polygon&& poly, std::uint32_t plane, const BoundingSphere& sphere);
-  std::size_t size() const { return polys_.size(); }
-  void reserve(std::size_t n);
+  static constexpr std::uint32_t kNone = 0xffffffffu;  // no fragment (a part split() dropped)
+  // Freed spans of more vertices than this are not reused: fragments that large are rare.
+  static constexpr std::uint32_t kReusedSpan = 16;
+  // A store made for a known set of fragments reserves room for this many times as many (splits
+  // add fragments): reserved pages cost nothing until written, and a store that has to grow
+  // copies everything it holds.
+  static constexpr std::size_t kGrowthRoom = 2;
 
-  const Polygon& poly(std::uint32_t id) const { return polys_[id]; }
+  // Texture coordinates are kept only when `tex_coords` (some input vertex has non-zero ones).
+  FragmentStore() = default;
+  explicit FragmentStore(bool tex_coords) : tex_(tex_coords) {}
+  bool has_tex_coords() const { return tex_; }
+
+  std::uint32_t add(const Polygon& poly, std::uint32_t plane, const BoundingSphere& sphere);
+  std::uint32_t add(const Polygon& poly, std::uint32_t plane) { return add(poly, plane, bounding_sphere(poly)); }
+  // A fragment of another store.
+  std::uint32_t add(const FragmentView& f, std::uint32_t plane, const BoundingSphere& sphere);
+  // Frees the fragment's id and vertices for reuse; `id` must not be used again until add returns it.
+  void release(std::uint32_t id);
+  void reserve(std::size_t fragments, std::size_t vertices);
+  // Moves the live fragments to fresh arrays without the space released ones left, keeping their
+  // order; returns each old id's new id (kNone for a released one).
+  std::vector<std::uint32_t> compact();
+  // Frees what only building needs (planes, spheres, free lists): afterwards only view() and
+  // points() may be called.
+  void drop_build_data();
+
+  FragmentView view(std::uint32_t id) const;
+  std::span<const Vec3> points(std::uint32_t id) const { return {pos_.data() + span_[id].first, span_[id].count}; }
   std::uint32_t plane(std::uint32_t id) const { return plane_[id]; }
   const BoundingSphere& sphere(std::uint32_t id) const { return sphere_[id]; }
+  std::size_t vertices_live() const { return live_vertices_; }
+  std::size_t vertex_slots() const { return pos_.size(); }  // stored vertices, freed spans included
 
   // classify() with a bounding-sphere early-out; identical results. Inline: it is the build's
   // innermost operation, and the early-out decides most calls with one plane evaluation.
@@ -42,17 +76,38 @@ class FragmentStore {
     const double d = p.distance(s.center);
     if (d - s.radius > eps) return Side::Front;
     if (d + s.radius < -eps) return Side::Back;
-    return bsp::classify(polys_[id], p, eps);
+    return bsp::classify(points(id), p, eps);
   }
   SideCounts count_sides(std::span<const std::uint32_t> ids, const Plane& p, double eps) const;
 
-  // Moves a fragment out when it is stored at a node or replaced by its split parts.
-  Polygon take(std::uint32_t id) { return std::move(polys_[id]); }
+  // Splits fragment `id` (classified Spanning) by the plane as bsp::split does and releases it; the
+  // parts keep its supporting plane and source.
+  struct Parts {
+    std::uint32_t front = kNone, back = kNone;
+    int dropped = 0;            // as SplitResult
+    double dropped_area = 0.0;  // as SplitResult
+  };
+  Parts split(std::uint32_t id, const Plane& plane, double eps);
 
  private:
-  std::vector<Polygon> polys_;
-  std::vector<std::uint32_t> plane_;
-  std::vector<BoundingSphere> sphere_;
+  struct Span {
+    std::uint32_t first = 0, count = 0;
+  };
+
+  std::uint32_t new_id(Span span, std::uint32_t source, std::uint32_t plane, const BoundingSphere& sphere);
+  Span new_span(std::uint32_t count);
+  void read(std::uint32_t id, Polygon& out) const;  // into out's reused memory
+
+  bool tex_ = false;
+  PageVector<Vec3> pos_;
+  PageVector<TexCoord> uv_;  // parallel to pos_ when tex_, else empty
+  PageVector<Span> span_;    // per id
+  PageVector<std::uint32_t> source_, plane_;
+  PageVector<BoundingSphere> sphere_;
+  PageVector<std::uint32_t> free_ids_;
+  std::vector<std::vector<std::uint32_t>> free_spans_;  // by vertex count: first vertices of freed spans
+  std::size_t live_vertices_ = 0;
+  Polygon whole_, front_, back_;  // split()'s scratch, whose memory every split reuses
 };
 
 // IS-CONVEX-SET [DividingPolygon]: every fragment lies in front of or on every other fragment's plane.

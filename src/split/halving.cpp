@@ -64,8 +64,8 @@ Extents extents_along(const SplitContext& ctx, const Vec3& u) {
   Extents e;
   for (auto id : ctx.ids) {
     double a = std::numeric_limits<double>::infinity(), b = -a;
-    for (const auto& v : ctx.frags.poly(id).verts) {
-      const double t = dot(u, v.p);
+    for (const Vec3& p : ctx.frags.points(id)) {
+      const double t = dot(u, p);
       a = std::min(a, t);
       b = std::max(b, t);
     }

@@ -26,13 +26,12 @@ struct Partition {
   std::vector<std::uint32_t> coplanar, front, back;
 };
 
-// A subtree built by a task: a tree of its own (nodes, fragments, and a plane pool holding just the
-// planes it uses), grafted under `parent` once every task is done.
+// A subtree built by a task: a tree of its own (nodes, a fragment store, and a plane pool holding
+// just the planes it uses), grafted under `parent` once every task is done.
 struct Task {
   TreeDraft tree;
-  FragmentStore store;
   std::unique_ptr<Splitter> splitter;
-  WorkItem root;                      // ids in `store`; parent is kNull inside the task's tree
+  WorkItem root;                      // ids in tree.store; parent is kNull inside the task's tree
   std::vector<std::uint32_t> prefix;  // the cell planes above the root, in tree.planes
   // The main pool's index of each of tree.planes' pairs (of the pair's even index) that came from
   // the main pool; pairs past its end are planes the task chose itself.
@@ -48,9 +47,9 @@ class RecursiveBuilder {
   // which builds everything it is given. The division depends on the input and the options only,
   // never on the thread count, and a splitter's choice depends only on its node's context, so a
   // subtree comes out the same whether a task or the main builder makes it.
-  RecursiveBuilder(TreeDraft& tree, FragmentStore& store, Splitter& splitter, std::vector<std::uint32_t> prefix,
+  RecursiveBuilder(TreeDraft& tree, Splitter& splitter, std::vector<std::uint32_t> prefix,
                    std::vector<std::unique_ptr<Task>>* tasks, std::size_t min_task = 0, std::size_t max_task = 0)
-      : tree_(tree), store_(store), splitter_(splitter), prefix_(std::move(prefix)), tasks_(tasks),
+      : tree_(tree), store_(tree.store), splitter_(splitter), prefix_(std::move(prefix)), tasks_(tasks),
         min_task_(min_task), max_task_(max_task) {}
 
   void run(WorkItem first) {
@@ -61,10 +60,12 @@ class RecursiveBuilder {
       WorkItem item = std::move(stack.back());
       stack.pop_back();
       const std::size_t m = item.ids.size();
-      if (tasks_ && item.parent != kNull && m >= min_task_ && m <= max_task_)
+      if (tasks_ && item.parent != kNull && m >= min_task_ && m <= max_task_) {
         hand_off(std::move(item));
-      else
+        if (store_.vertices_live() < store_.vertex_slots() / 2) compact_store(stack);
+      } else {
         process(std::move(item), stack);
+      }
     }
   }
 
@@ -92,12 +93,14 @@ class RecursiveBuilder {
 
   // Moves the item's fragments, and the planes they and its cell use, into a new task's own store
   // and pool (so the task shares nothing with this builder, which goes on adding fragments and
-  // planes), then starts it. Runs on the main builder's thread, in its deterministic order.
+  // planes, and reuses the space the moved ones leave), then starts it. Runs on the main builder's
+  // thread, in its deterministic order.
   void hand_off(WorkItem item) {
     auto& task = *tasks_->emplace_back(std::make_unique<Task>());
     task.tree.shape = tree_.shape;
     task.tree.tol = tree_.tol;
     task.tree.bounds = tree_.bounds;
+    task.tree.store = FragmentStore(store_.has_tex_coords());
     task.splitter = splitter_.clone();
     const auto adopt = [&](std::uint32_t p) {
       const std::uint32_t local = task.tree.planes.add(tree_.planes[p]);
@@ -106,15 +109,31 @@ class RecursiveBuilder {
     };
     collect_cell_planes(item);
     for (auto p : cell_planes_) task.prefix.push_back(adopt(p));
+    std::size_t vertices = 0;
+    for (auto id : item.ids) vertices += store_.points(id).size();
+    task.tree.store.reserve(FragmentStore::kGrowthRoom * item.ids.size(), FragmentStore::kGrowthRoom * vertices);
     std::vector<std::uint32_t> ids;
     ids.reserve(item.ids.size());
-    for (auto id : item.ids) ids.push_back(task.store.add(store_.take(id), adopt(store_.plane(id)), store_.sphere(id)));
+    for (auto id : item.ids) {
+      ids.push_back(task.tree.store.add(store_.view(id), adopt(store_.plane(id)), store_.sphere(id)));
+      store_.release(id);
+    }
     task.root = {std::move(ids), kNull, true, item.depth, item.key};
     task.parent = item.parent;
     task.front_side = item.front_side;
     Task* t = &task;
 #pragma omp task default(none) firstprivate(t)
-    RecursiveBuilder(t->tree, t->store, *t->splitter, std::move(t->prefix), nullptr).run(std::move(t->root));
+    RecursiveBuilder(t->tree, *t->splitter, std::move(t->prefix), nullptr).run(std::move(t->root));
+  }
+
+  // Handed-off fragments leave space the main builder, which makes only the top of the tree, would
+  // never fill again: once they are half the store, the store is compacted and every id renamed,
+  // so the input's copy does not outlive its hand-off (a linear cost each time the store halves).
+  void compact_store(std::vector<WorkItem>& stack) {
+    const std::vector<std::uint32_t> to_new = store_.compact();
+    for (WorkItem& w : stack)
+      for (auto& id : w.ids) id = to_new[id];
+    for (auto& id : tree_.fragments) id = to_new[id];
   }
 
   // The chosen pooled plane, and whether it is the plane of one of the node's fragments.
@@ -184,29 +203,27 @@ class RecursiveBuilder {
   // fragment frees one slot and fills at most one.
   std::size_t place_undecided(std::uint32_t id, const Plane& plane, std::uint32_t* front, std::size_t w,
                               Partition& part) {
-    switch (classify(store_.poly(id), plane, tree_.tol.plane_eps)) {
+    switch (classify(store_.points(id), plane, tree_.tol.plane_eps)) {
       case Side::Front: front[w++] = id; break;
       case Side::Back: part.back.push_back(id); break;
       case Side::Coplanar: part.coplanar.push_back(id); break;
       case Side::Spanning: {
         const auto [f, b] = split_fragment(id, plane);
-        if (f != kNull) front[w++] = f;
-        if (b != kNull) part.back.push_back(b);
+        if (f != FragmentStore::kNone) front[w++] = f;
+        if (b != FragmentStore::kNone) part.back.push_back(b);
         break;
       }
     }
     return w;
   }
 
-  // Splits a spanning fragment; returns the ids of its kept front and back parts (kNull if dropped).
+  // Splits a spanning fragment; returns the ids of its kept front and back parts (kNone if dropped).
   std::pair<std::uint32_t, std::uint32_t> split_fragment(std::uint32_t id, const Plane& plane) {
-    const std::uint32_t support = store_.plane(id);
-    SplitResult r = split(store_.take(id), plane, tree_.tol.plane_eps);
+    const FragmentStore::Parts r = store_.split(id, plane, tree_.tol.plane_eps);
     ++tree_.stats.splits;
     tree_.stats.dropped_slivers += r.dropped;
     tree_.stats.dropped_area += r.dropped_area;
-    return {r.front ? store_.add(std::move(*r.front), support) : kNull,
-            r.back ? store_.add(std::move(*r.back), support) : kNull};
+    return {r.front, r.back};
   }
 
   // Appends a node storing `ids` and links it under the item's parent.
@@ -218,7 +235,7 @@ class RecursiveBuilder {
     n.count = static_cast<std::uint32_t>(ids.size());
     for (auto id : ids) {
       tree_.fragment_plane.push_back(store_.plane(id));
-      tree_.fragments.push_back(store_.take(id));
+      tree_.fragments.push_back(id);
     }
     tree_.nodes.push_back(n);
     parent_.push_back(item.parent);
@@ -249,9 +266,10 @@ std::vector<std::uint32_t> planes_to_main(PlanePool& main, Task& task) {
 }
 
 // Lays the main builder's nodes and the tasks' subtrees out as one tree in pre-order (front child
-// first), the order a build without tasks makes, in arrays allocated once at their final size:
-// every node and fragment is moved exactly once. A task's subtree is already in pre-order, so it
-// is copied as one block with its links shifted.
+// first), the order a build without tasks makes, in arrays allocated once at their final size. A
+// task's subtree is already in pre-order, so it is copied as one block with its links shifted; its
+// fragments move into the main store (into the space of the fragments handed to the tasks), and
+// each task's store is freed as soon as it is copied.
 class Assembler {
  public:
   Assembler(TreeDraft& main, std::vector<std::unique_ptr<Task>>& tasks) : main_(main), tasks_(tasks) {}
@@ -264,6 +282,7 @@ class Assembler {
       nodes += tasks_[t]->tree.nodes.size();
       fragments += tasks_[t]->tree.fragments.size();
     }
+    main_.store.reserve(fragments, main_.store.vertex_slots() + vertices_to_add());
     nodes_.reserve(nodes);
     fragments_.reserve(fragments);
     planes_.reserve(fragments);
@@ -294,7 +313,12 @@ class Assembler {
     const DraftNode& old = main_.nodes[index];
     DraftNode n = old;
     n.front = n.back = kNull;  // set when the children are laid out
-    append_fragments(n, main_.fragments, main_.fragment_plane, [](std::uint32_t p) { return p; });
+    const std::uint32_t first = n.first;
+    n.first = static_cast<std::uint32_t>(fragments_.size());
+    for (std::uint32_t f = first; f < first + n.count; ++f) {
+      fragments_.push_back(main_.fragments[f]);
+      planes_.push_back(main_.fragment_plane[f]);
+    }
     nodes_.push_back(n);
     push_child(stack, old.back, hung_[2 * index + 1], at, false);
     push_child(stack, old.front, hung_[2 * index], at, true);
@@ -314,7 +338,14 @@ class Assembler {
       if (n.plane != kNull) n.plane = remap(n.plane);
       if (n.front != kNull) n.front += offset;
       if (n.back != kNull) n.back += offset;
-      append_fragments(n, task.tree.fragments, task.tree.fragment_plane, remap);
+      const std::uint32_t first = n.first;
+      n.first = static_cast<std::uint32_t>(fragments_.size());
+      for (std::uint32_t f = first; f < first + n.count; ++f) {
+        const std::uint32_t id = task.tree.fragments[f];
+        const std::uint32_t plane = remap(task.tree.fragment_plane[f]);
+        fragments_.push_back(main_.store.add(task.tree.store.view(id), plane, task.tree.store.sphere(id)));
+        planes_.push_back(plane);
+      }
       nodes_.push_back(n);
     }
     BuildStats& to = main_.stats;
@@ -326,39 +357,33 @@ class Assembler {
     task = Task{};
   }
 
-  // Moves node n's fragments to the end of the new arrays and points n at them.
-  template <class Remap>
-  void append_fragments(DraftNode& n, std::vector<Polygon>& fragments, const std::vector<std::uint32_t>& planes, Remap remap) {
-    const std::uint32_t first = n.first;
-    n.first = static_cast<std::uint32_t>(fragments_.size());
-    for (std::uint32_t f = first; f < first + n.count; ++f) {
-      fragments_.push_back(std::move(fragments[f]));
-      planes_.push_back(remap(planes[f]));
-    }
+  std::size_t vertices_to_add() const {
+    std::size_t n = 0;
+    for (const auto& t : tasks_) n += t->tree.store.vertices_live();
+    return n;
   }
 
   TreeDraft& main_;
   std::vector<std::unique_ptr<Task>>& tasks_;
   std::vector<std::uint32_t> hung_;  // per main node and side (2n front, 2n+1 back): the task hung there
-  std::vector<DraftNode> nodes_;
-  std::vector<Polygon> fragments_;
+  PageVector<DraftNode> nodes_;
+  std::vector<std::uint32_t> fragments_;  // ids in the main store
   std::vector<std::uint32_t> planes_;
 };
 
 // Builds the tree top-down; subtrees handed off run as OpenMP tasks on the other threads while the
 // main builder goes on, and are laid out with the main builder's nodes once all are done.
-void build_recursive(TreeDraft& tree, FragmentStore& store, Splitter& splitter, std::vector<std::uint32_t> ids,
-                     const BuildOptions& options) {
+void build_recursive(TreeDraft& tree, Splitter& splitter, std::vector<std::uint32_t> ids, const BuildOptions& options) {
   std::vector<std::unique_ptr<Task>> tasks;
   const std::size_t min_task = std::max<std::size_t>(options.min_task_fragments, 1);
   const std::size_t max_task = tree.stats.n_input / std::max<std::size_t>(options.task_share, 1);
   if (max_task < min_task) {  // no subtree can become a task: no thread team to start and idle
-    RecursiveBuilder(tree, store, splitter, {}, nullptr).run(WorkItem{std::move(ids)});
+    RecursiveBuilder(tree, splitter, {}, nullptr).run(WorkItem{std::move(ids)});
     return;
   }
-#pragma omp parallel default(none) shared(tree, store, splitter, ids, tasks, min_task, max_task)
+#pragma omp parallel default(none) shared(tree, splitter, ids, tasks, min_task, max_task)
 #pragma omp single
-  RecursiveBuilder(tree, store, splitter, {}, &tasks, min_task, max_task).run(WorkItem{std::move(ids)});
+  RecursiveBuilder(tree, splitter, {}, &tasks, min_task, max_task).run(WorkItem{std::move(ids)});
   tree.stats.tasks = tasks.size();
   if (!tasks.empty()) Assembler(tree, tasks).run();
 }
@@ -369,14 +394,11 @@ Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildO
   const auto start = std::chrono::steady_clock::now();
   TreeDraft draft;
   draft.shape = options.shape;
-  {
-    FragmentStore store;
-    std::vector<std::uint32_t> ids = load_input(input, draft, store);
-    if (options.incremental)
-      build_incremental(draft, store, std::move(ids), splitter, options);
-    else
-      build_recursive(draft, store, splitter, std::move(ids), options);
-  }
+  std::vector<std::uint32_t> ids = load_input(input, draft);
+  if (options.incremental)
+    build_incremental(draft, std::move(ids), splitter, options);
+  else
+    build_recursive(draft, splitter, std::move(ids), options);
   Tree tree = freeze(std::move(draft));
   tree.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;

@@ -11,7 +11,7 @@ namespace {
 // The tree while it grows: node fragment lists are open-ended until freeze().
 class IncrementalBuilder {
  public:
-  IncrementalBuilder(TreeDraft& tree, FragmentStore& store) : tree_(tree), store_(store) {}
+  explicit IncrementalBuilder(TreeDraft& tree) : tree_(tree), store_(tree.store) {}
 
   void insert(std::uint32_t id) {
     if (nodes_.empty()) {
@@ -40,7 +40,7 @@ class IncrementalBuilder {
       n.count = static_cast<std::uint32_t>(frags_[s].size());
       for (auto id : frags_[s]) {
         tree_.fragment_plane.push_back(store_.plane(id));
-        tree_.fragments.push_back(store_.take(id));
+        tree_.fragments.push_back(id);
       }
       tree_.nodes.push_back(n);
       if (parent != kNull) {
@@ -64,13 +64,12 @@ class IncrementalBuilder {
       case Side::Front: go(f, n, true); break;
       case Side::Back: go(f, n, false); break;
       case Side::Spanning: {
-        const std::uint32_t support = store_.plane(f);
-        SplitResult r = split(store_.take(f), plane, tree_.tol.plane_eps);
+        const FragmentStore::Parts r = store_.split(f, plane, tree_.tol.plane_eps);
         ++tree_.stats.splits;
         tree_.stats.dropped_slivers += r.dropped;
         tree_.stats.dropped_area += r.dropped_area;
-        if (r.back) go(store_.add(std::move(*r.back), support), n, false);
-        if (r.front) go(store_.add(std::move(*r.front), support), n, true);
+        if (r.back != FragmentStore::kNone) go(r.back, n, false);
+        if (r.front != FragmentStore::kNone) go(r.front, n, true);
         break;
       }
     }
@@ -103,7 +102,8 @@ class IncrementalBuilder {
     const double eps = tree_.tol.plane_eps;
     const Plane& pf = tree_.planes[store_.plane(f)];
     for (auto g : leaf)
-      if (!in_front_or_on(store_.poly(g), pf, eps) || !in_front_or_on(store_.poly(f), tree_.planes[store_.plane(g)], eps))
+      if (!in_front_or_on(store_.points(g), pf, eps) ||
+          !in_front_or_on(store_.points(f), tree_.planes[store_.plane(g)], eps))
         return false;
     return true;
   }
@@ -136,10 +136,9 @@ void shuffle(std::vector<std::uint32_t>& ids, std::uint64_t seed) {
 
 }  // namespace
 
-void build_incremental(TreeDraft& tree, FragmentStore& store, std::vector<std::uint32_t> ids, Splitter&,
-                       const BuildOptions& options) {
+void build_incremental(TreeDraft& tree, std::vector<std::uint32_t> ids, Splitter&, const BuildOptions& options) {
   if (options.order == InsertOrder::Shuffled) shuffle(ids, options.order_seed);
-  IncrementalBuilder builder(tree, store);
+  IncrementalBuilder builder(tree);
   for (auto id : ids) builder.insert(id);
   builder.freeze();
 }

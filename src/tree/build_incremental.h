@@ -16,7 +16,7 @@
 
 namespace bsp {
 
-void build_incremental(TreeDraft& tree, FragmentStore& store, std::vector<std::uint32_t> ids, Splitter& splitter,
+void build_incremental(TreeDraft& tree, std::vector<std::uint32_t> ids, Splitter& splitter,
                        const BuildOptions& options);
 
 }  // namespace bsp

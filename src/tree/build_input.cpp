@@ -9,6 +9,10 @@ namespace {
 // Input polygons are cleaned in parallel chunks of this many, then pooled in input order. The
 // chunking is fixed, so sums over chunks (areas) round the same on every thread count.
 constexpr std::size_t kLoadChunk = 4096;
+// Chunks cleaned at once before they are pooled: enough to keep every thread busy, few enough that
+// the cleaned copies (a heap polygon each) stay a small fraction of the store they go into, and the
+// allocator reuses one window's memory for the next instead of holding a copy of the whole input.
+constexpr std::size_t kLoadWindow = 32;
 
 bool is_planar(const Polygon& poly, const Plane& plane, double eps) {
   for (const auto& v : poly.verts)
@@ -57,31 +61,46 @@ void load_one(const Polygon& poly, std::uint32_t source, double eps, Chunk& out)
     keep_one(Polygon{{poly.verts[0], poly.verts[i], poly.verts[i + 1]}, source}, eps, out);
 }
 
+// Adds a cleaned chunk to the store and its counters to the stats, in input order, and empties it.
+void pool_chunk(Chunk& c, TreeDraft& tree, std::vector<std::uint32_t>& ids) {
+  tree.stats.input_area += c.input_area;
+  tree.stats.dropped_area += c.dropped_area;
+  tree.stats.dropped_input += c.dropped_input;
+  tree.stats.triangulated_extra += c.triangulated_extra;
+  for (const Part& p : c.parts) ids.push_back(tree.store.add(p.poly, tree.planes.add(p.plane), p.sphere));
+  c = Chunk{};
+}
+
 }  // namespace
 
-std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree, FragmentStore& store) {
-  for (const auto& poly : input)
-    for (const auto& v : poly.verts) tree.bounds.add(v.p);
+std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree) {
+  bool tex_coords = false;
+  std::size_t vertices = 0;
+  for (const auto& poly : input) {
+    vertices += poly.verts.size();
+    for (const auto& v : poly.verts) {
+      tree.bounds.add(v.p);
+      tex_coords |= v.u != 0 || v.v != 0;
+    }
+  }
   tree.tol = Tolerance::for_extent(tree.bounds.diagonal());
   tree.stats.n_input = input.size();
   const double eps = tree.tol.plane_eps;
-  std::vector<Chunk> chunks((input.size() + kLoadChunk - 1) / kLoadChunk);
-#pragma omp parallel for schedule(dynamic, 1) default(none) shared(input, chunks, eps)
-  for (std::size_t c = 0; c < chunks.size(); ++c) {
-    const std::size_t end = std::min(input.size(), (c + 1) * kLoadChunk);
-    for (std::size_t i = c * kLoadChunk; i < end; ++i) load_one(input[i], static_cast<std::uint32_t>(i), eps, chunks[c]);
-  }
   std::vector<std::uint32_t> ids;
   ids.reserve(input.size());
-  store.reserve(input.size());
+  tree.store = FragmentStore(tex_coords);
+  tree.store.reserve(FragmentStore::kGrowthRoom * input.size(), FragmentStore::kGrowthRoom * vertices);
   tree.planes.reserve(input.size());
-  for (Chunk& c : chunks) {
-    tree.stats.input_area += c.input_area;
-    tree.stats.dropped_area += c.dropped_area;
-    tree.stats.dropped_input += c.dropped_input;
-    tree.stats.triangulated_extra += c.triangulated_extra;
-    for (Part& p : c.parts) ids.push_back(store.add(std::move(p.poly), tree.planes.add(p.plane), p.sphere));
-    c = Chunk{};
+  const std::size_t chunk_count = (input.size() + kLoadChunk - 1) / kLoadChunk;
+  std::vector<Chunk> window(kLoadWindow);
+  for (std::size_t first = 0; first < chunk_count; first += kLoadWindow) {
+    const std::size_t count = std::min(kLoadWindow, chunk_count - first);
+#pragma omp parallel for schedule(dynamic, 1) default(none) shared(input, window, eps, first, count)
+    for (std::size_t c = 0; c < count; ++c) {
+      const std::size_t begin = (first + c) * kLoadChunk, end = std::min(input.size(), begin + kLoadChunk);
+      for (std::size_t i = begin; i < end; ++i) load_one(input[i], static_cast<std::uint32_t>(i), eps, window[c]);
+    }
+    for (std::size_t c = 0; c < count; ++c) pool_chunk(window[c], tree, ids);
   }
   return ids;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The part of a build shared by the recursive and incremental builders: the tolerance from the
-// input's extent, and loading the input into a FragmentStore with pooled planes.
+// input's extent, and loading the input into the draft's FragmentStore with pooled planes.
 #include <span>
 #include <vector>
 
@@ -10,8 +10,9 @@
 
 namespace bsp {
 
-// Sets tree.bounds, tree.tol and the input counters of tree.stats; returns the ids of the usable
-// input fragments in input order (slivers dropped and non-planar polygons fan-triangulated).
-std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree, FragmentStore& store);
+// Sets tree.bounds, tree.tol, tree.store (texture coordinates kept when the input has non-zero
+// ones) and the input counters of tree.stats; returns the ids of the usable input fragments in
+// input order (slivers dropped and non-planar polygons fan-triangulated).
+std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree);
 
 }  // namespace bsp

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "common/page_allocator.h"
+
 namespace bsp {
 
 namespace {
@@ -21,33 +23,33 @@ void renumber_planes(TreeDraft& d) {
   d.planes = std::move(renumbered);
 }
 
-bool has_tex_coords(const std::vector<Polygon>& polys) {
-  for (const Polygon& p : polys)
-    for (const Vertex& v : p.verts)
-      if (v.u != 0 || v.v != 0) return true;
+bool any_tex_coords(const FragmentStore& store, const std::vector<std::uint32_t>& ids) {
+  for (auto id : ids)
+    for (const TexCoord& t : store.view(id).uv)
+      if (t.u != 0 || t.v != 0) return true;
   return false;
 }
 
-// Copies the polygons into the flat array, releasing each one as it goes, in parallel: a million
-// fragments take a few hundred milliseconds to copy and free on one thread.
-void pack(std::vector<Polygon>& polys, FragmentArray& out) {
-  std::vector<std::uint32_t> counts(polys.size()), sources(polys.size());
-  for (std::size_t i = 0; i < polys.size(); ++i) {
-    counts[i] = static_cast<std::uint32_t>(polys[i].verts.size());
-    sources[i] = polys[i].source;
+// Copies the fragments into the flat array in node order, in parallel: a million fragments take a
+// few hundred milliseconds to copy on one thread.
+void pack(const FragmentStore& store, const std::vector<std::uint32_t>& ids, FragmentArray& out) {
+  std::vector<std::uint32_t> counts(ids.size()), sources(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const FragmentView f = store.view(ids[i]);
+    counts[i] = static_cast<std::uint32_t>(f.size());
+    sources[i] = f.source;
   }
-  out.lay_out(counts, sources, has_tex_coords(polys));
-  const auto n = static_cast<std::int64_t>(polys.size());
-#pragma omp parallel for schedule(static) default(none) shared(polys, out, n)
-  for (std::int64_t i = 0; i < n; ++i) {
-    out.write(static_cast<std::size_t>(i), polys[static_cast<std::size_t>(i)]);
-    polys[static_cast<std::size_t>(i)] = Polygon{};
-  }
-  polys = {};
+  out.lay_out(counts, sources, store.has_tex_coords() && any_tex_coords(store, ids));
+  const auto n = static_cast<std::int64_t>(ids.size());
+#pragma omp parallel for schedule(static) default(none) shared(store, ids, out, n)
+  for (std::int64_t i = 0; i < n; ++i) out.write(static_cast<std::size_t>(i), store.view(ids[static_cast<std::size_t>(i)]));
 }
 
 }  // namespace
 
+// Everything but the fragments is converted first, and what only the build needed is dropped from
+// the store before the fragments are packed, so the peak (store and packed copy both whole) holds
+// as little else as it can.
 Tree freeze(TreeDraft&& draft) {
   renumber_planes(draft);
   Tree tree;
@@ -59,8 +61,11 @@ Tree freeze(TreeDraft&& draft) {
   tree.fragment_plane = std::move(draft.fragment_plane);
   tree.nodes.reserve(draft.nodes.size());
   for (const DraftNode& n : draft.nodes) tree.nodes.push_back({n.plane, n.front, n.back, n.first});
-  draft.nodes = {};
-  pack(draft.fragments, tree.fragments);
+  free_memory(draft.nodes);
+  draft.store.drop_build_data();
+  pack(draft.store, draft.fragments, tree.fragments);
+  draft.store = FragmentStore{};
+  free_memory(draft.fragments);
   return tree;
 }
 

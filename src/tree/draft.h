@@ -1,10 +1,12 @@
 #pragma once
-// A tree while it is being built: nodes carry their fragment counts and fragments are Polygons, so
-// builders can split, move and append freely. Every builder lays its nodes out in pre-order (front
-// child first) with the fragments in node order; freeze() then packs the draft into a Tree.
+// A tree while it is being built: nodes carry their fragment counts, and fragments are ids in the
+// draft's own FragmentStore, where builders split and add them. Every builder lays its nodes out in
+// pre-order (front child first) with the fragment ids in node order; freeze() then packs the draft
+// into a Tree.
 #include <cstdint>
 #include <vector>
 
+#include "split/fragment_store.h"
 #include "tree/tree.h"
 
 namespace bsp {
@@ -18,10 +20,11 @@ struct DraftNode {
 };
 
 struct TreeDraft {
-  std::vector<DraftNode> nodes;
+  PageVector<DraftNode> nodes;
   PlanePool planes;
-  std::vector<Polygon> fragments;
-  std::vector<std::uint32_t> fragment_plane;
+  FragmentStore store;                       // the fragments, and during the build every pending one
+  std::vector<std::uint32_t> fragments;      // ids in `store`, node after node
+  std::vector<std::uint32_t> fragment_plane;  // parallel to `fragments`
   Shape shape = Shape::Strict;
   Tolerance tol;
   Box bounds;
@@ -32,7 +35,7 @@ struct TreeDraft {
 // traversal (which visits nodes near their stored order) reads the pool front to back instead of at
 // random, and drops planes no node or fragment uses; orientation and sharing are kept (a node and
 // a fragment on one plane still have indices equal up to the low bit). Packs the fragments into
-// flat arrays, releasing each Polygon as it is copied so the two forms are not both whole at once.
+// flat arrays in node order and releases the store.
 Tree freeze(TreeDraft&& draft);
 
 }  // namespace bsp
