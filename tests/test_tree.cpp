@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "catalog.h"
+#include "split/fragment_store.h"
 #include "split/registry.h"
 #include "tree/build.h"
 #include "tree/traverse.h"
@@ -172,4 +173,68 @@ TEST(TreeBytes, CountSizesNotCapacities) {
   roomy.nodes.reserve(4 * tree.nodes.capacity() + 16);
   roomy.fragments.reserve(4 * f + 16, 4 * v + 16);
   EXPECT_EQ(roomy.bytes(), tree.bytes());
+}
+
+// --- the build's fragment store
+
+namespace {
+
+Polygon triangle(double x, std::uint32_t source, double u = 0) {
+  return {{{{x, 0, 0}, u, 0}, {{x + 1, 0, 0}, u, 1}, {{x, 1, 0}, 0, u}}, source};
+}
+
+}  // namespace
+
+TEST(FragmentStore, ASplitReusesItsFragmentsIdAndSpan) {
+  FragmentStore store;
+  const std::uint32_t id = store.add(triangle(0, 7), 0);
+  const std::size_t slots = store.vertex_slots();
+  // x = 0.5 cuts the triangle into a triangle (front, the corner at x = 1) and a quadrilateral
+  // (back): the triangle, added first, takes the released id and span; the quadrilateral new space.
+  const FragmentStore::Parts parts = store.split(id, Plane{{1, 0, 0}, -0.5}, 1e-9);
+  ASSERT_NE(parts.front, FragmentStore::kNone);
+  ASSERT_NE(parts.back, FragmentStore::kNone);
+  EXPECT_EQ(parts.front, id);
+  EXPECT_EQ(store.points(parts.front).size(), 3u);
+  EXPECT_EQ(store.points(parts.back).size(), 4u);
+  EXPECT_EQ(store.vertex_slots(), slots + 4);
+  EXPECT_EQ(store.vertices_live(), 7u);
+  EXPECT_EQ(store.view(parts.back).source, 7u);
+  for (const Vec3& p : store.points(parts.front)) EXPECT_GE(p.x, 0.5);
+}
+
+TEST(FragmentStore, CompactKeepsEveryLiveFragmentInOrderAndDropsReleasedOnes) {
+  FragmentStore store(true);
+  std::vector<std::uint32_t> ids;
+  for (std::uint32_t k = 0; k < 5; ++k) ids.push_back(store.add(triangle(2.0 * k, 10 + k, 0.25 * k), k));
+  store.release(ids[1]);
+  store.release(ids[3]);
+  const std::vector<std::uint32_t> to_new = store.compact();
+  ASSERT_EQ(to_new.size(), 5u);
+  EXPECT_EQ(to_new[1], FragmentStore::kNone);
+  EXPECT_EQ(to_new[3], FragmentStore::kNone);
+  EXPECT_EQ(to_new[0], 0u);
+  EXPECT_EQ(to_new[2], 1u);
+  EXPECT_EQ(to_new[4], 2u);
+  EXPECT_EQ(store.vertex_slots(), 9u);
+  for (std::uint32_t k : {0u, 2u, 4u}) {
+    const FragmentView f = store.view(to_new[k]);
+    const Polygon expected = triangle(2.0 * k, 10 + k, 0.25 * k);
+    EXPECT_EQ(f.source, 10 + k);
+    EXPECT_EQ(store.plane(to_new[k]), k);
+    ASSERT_EQ(f.size(), 3u);
+    ASSERT_EQ(f.uv.size(), 3u);
+    for (std::size_t i = 0; i < 3; ++i) {
+      EXPECT_EQ(f.p[i], expected.verts[i].p);
+      EXPECT_EQ(f.uv[i].u, static_cast<float>(expected.verts[i].u));
+      EXPECT_EQ(f.uv[i].v, static_cast<float>(expected.verts[i].v));
+    }
+  }
+}
+
+TEST(FragmentStore, StoresNoTextureCoordinatesUnlessAsked) {
+  FragmentStore store;
+  const std::uint32_t id = store.add(triangle(0, 0, 0.5), 0);
+  EXPECT_FALSE(store.has_tex_coords());
+  EXPECT_TRUE(store.view(id).uv.empty());
 }
