@@ -4,7 +4,9 @@
 //   scaling/build/SCENE/n:N/HEURISTIC/threads:T   T = 1 and 2; items = input polygons; counters:
 //       the tree's metrics, embree_bvh_seconds (Embree's MEDIUM BVH of the same triangles on as
 //       many threads as the build), build_vs_embree (median build time / that),
-//       bytes_per_fragment; at T = 2 also speedup (the 1-thread median build time / this one's)
+//       bytes_per_fragment, build_peak_vs_tree (how far resident memory rose during one more
+//       build, the finished tree included, over the tree's bytes; resident_memory.h); at T = 2
+//       also speedup (the 1-thread median build time / this one's)
 //   scaling/traverse/SCENE/n:N/HEURISTIC  back-to-front from the 8 metric views; items = fragments
 //       emitted; counters: sort_seconds (std::sort of as many (depth, id) pairs as one view emits),
 //       traverse_vs_sort (median time per view / that)

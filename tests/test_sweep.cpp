@@ -469,7 +469,7 @@ TEST(SweepReport, ReadingRejectsOtherSchemasVersionsAndDamagedRecords) {
 
 namespace {
 
-nlohmann::json bench_output(double build_vs_embree, double speedup, double fragments) {
+nlohmann::json bench_output(double build_vs_embree, double speedup, double fragments, double peak = 1.9) {
   nlohmann::json doc;
   doc["context"] = {{"date", "today"}};
   doc["benchmarks"] = nlohmann::json::array();
@@ -477,6 +477,7 @@ nlohmann::json bench_output(double build_vs_embree, double speedup, double fragm
                                {"run_type", "iteration"},
                                {"build_vs_embree", build_vs_embree},
                                {"speedup", speedup},
+                               {"build_peak_vs_tree", peak},
                                {"fragments", fragments},
                                {"bytes_per_fragment", 211.0}});
   doc["benchmarks"].push_back({{"name", "scaling/traverse/random-disjoint/n:100000/crystal/real_time"},
@@ -496,7 +497,8 @@ TEST(BenchGate, IdenticalOutputPassesAndComparesEveryJudgedCounter) {
   const auto r = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.8, 1e5), {});
   EXPECT_FALSE(r.failed());
   EXPECT_EQ(r.runs_compared, 2u);
-  EXPECT_EQ(r.values_compared, 6u);  // build_vs_embree, speedup, fragments, bytes; traverse_vs_sort, fragments
+  // build_vs_embree, speedup, build_peak_vs_tree, fragments, bytes; traverse_vs_sort, fragments
+  EXPECT_EQ(r.values_compared, 7u);
 }
 
 TEST(BenchGate, RatioWorseByTheToleranceFailsAndASmallerDriftPasses) {
@@ -507,6 +509,12 @@ TEST(BenchGate, RatioWorseByTheToleranceFailsAndASmallerDriftPasses) {
   const auto lost_core = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.0, 1e5), {});
   EXPECT_TRUE(any_change(lost_core, "worse", "speedup"));
   EXPECT_FALSE(lost_core.failed());
+}
+
+TEST(BenchGate, ABuildThatHoldsMoreMemoryFails) {
+  const auto r = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5, 1.9), bench_output(8, 1.8, 1e5, 3.8), {});
+  EXPECT_TRUE(r.failed());
+  EXPECT_TRUE(any_change(r, "worse", "build_peak_vs_tree"));
 }
 
 TEST(BenchGate, BetterRatioIsANoteNotAFailure) {
