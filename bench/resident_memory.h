@@ -1,6 +1,7 @@
 #pragma once
 // The process's resident memory, from Linux's /proc/self/status, for measuring how much memory a
-// build holds at its peak. Returns nullopt where /proc is not there (the counters are then left out).
+// build holds at its peak. Returns nullopt where /proc is not there: the counters are then left out,
+// and the benchmark gate reports them missing against a baseline that has them.
 #include <cstdint>
 #include <optional>
 

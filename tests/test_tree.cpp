@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "catalog.h"
+#include "common/errors.h"
 #include "split/fragment_store.h"
 #include "split/registry.h"
 #include "tree/build.h"
@@ -237,4 +238,12 @@ TEST(FragmentStore, StoresNoTextureCoordinatesUnlessAsked) {
   const std::uint32_t id = store.add(triangle(0, 0, 0.5), 0);
   EXPECT_FALSE(store.has_tex_coords());
   EXPECT_TRUE(store.view(id).uv.empty());
+}
+
+TEST(CheckScene, RejectsTextureCoordinatesBeyondTheFloatRange) {
+  Scene scene;
+  scene.polygons.push_back(triangle(0, 0));
+  EXPECT_NO_THROW(check_scene(scene, "test"));
+  scene.polygons[0].verts[1].u = 1e300;
+  EXPECT_THROW(check_scene(scene, "test"), InputError);
 }

@@ -5,11 +5,15 @@
 namespace bsp {
 
 Polygon FragmentView::polygon() const {
-  Polygon out{{}, source};
-  out.verts.reserve(p.size());
-  for (std::size_t k = 0; k < p.size(); ++k)
-    out.verts.push_back(uv.empty() ? Vertex{p[k]} : Vertex{p[k], uv[k].u, uv[k].v});
+  Polygon out;
+  copy_to(out);
   return out;
+}
+
+void FragmentView::copy_to(Polygon& out) const {
+  out.verts.resize(p.size());
+  for (std::size_t k = 0; k < p.size(); ++k) out.verts[k] = uv.empty() ? Vertex{p[k]} : Vertex{p[k], uv[k].u, uv[k].v};
+  out.source = source;
 }
 
 void FragmentArray::reserve(std::size_t fragments, std::size_t vertices) {
@@ -26,15 +30,6 @@ void FragmentArray::lay_out(std::span<const std::uint32_t> vertex_counts, std::s
   source_.assign(sources.begin(), sources.end());
   points_.assign(start_.back(), Vec3{});
   uv_.assign(tex_coords ? start_.back() : 0, TexCoord{});
-}
-
-void FragmentArray::write(std::size_t i, const Polygon& poly) {
-  std::size_t at = start_[i];
-  for (const auto& v : poly.verts) {
-    points_[at] = v.p;
-    if (!uv_.empty()) uv_[at] = {static_cast<float>(v.u), static_cast<float>(v.v)};
-    ++at;
-  }
 }
 
 void FragmentArray::write(std::size_t i, const FragmentView& f) {

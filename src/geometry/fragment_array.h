@@ -24,6 +24,7 @@ struct FragmentView {
 
   std::size_t size() const { return p.size(); }
   Polygon polygon() const;  // a copy, for geometry code that takes a Polygon
+  void copy_to(Polygon& out) const;  // the same into `out`, reusing its memory
 };
 
 class FragmentArray {
@@ -46,11 +47,10 @@ class FragmentArray {
 
   void reserve(std::size_t fragments, std::size_t vertices);
   // Bulk packing, for writers that fill the fragments in any order (and on any thread): lays out
-  // fragments with these vertex counts and sources, then write(i, ...) fills fragment i, which must
+  // fragments with these vertex counts and sources, then write(i, f) fills fragment i, which must
   // have vertex_counts[i] vertices (texture coordinates missing from a view are zero). Replaces the
   // contents.
   void lay_out(std::span<const std::uint32_t> vertex_counts, std::span<const std::uint32_t> sources, bool tex_coords);
-  void write(std::size_t i, const Polygon& poly);
   void write(std::size_t i, const FragmentView& f);
   void push_back(const Polygon& poly);
   std::vector<Polygon> to_polygons() const;

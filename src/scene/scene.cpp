@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "common/errors.h"
@@ -49,10 +50,15 @@ nlohmann::json scene_json(const Scene& scene) {
 void check_scene(const Scene& scene, std::string_view origin) {
   if (scene.polygons.empty()) throw InputError(std::string(origin) + ": the scene has no polygons");
   for (std::size_t i = 0; i < scene.polygons.size(); ++i)
-    for (const auto& v : scene.polygons[i].verts)
+    for (const auto& v : scene.polygons[i].verts) {
       if (!is_finite(v.p) || !std::isfinite(v.u) || !std::isfinite(v.v))
         throw InputError(std::string(origin) + ": polygon " + std::to_string(i) +
                          " has a non-finite (NaN or infinite) coordinate");
+      // Trees store texture coordinates as floats.
+      if (std::abs(v.u) > std::numeric_limits<float>::max() || std::abs(v.v) > std::numeric_limits<float>::max())
+        throw InputError(std::string(origin) + ": polygon " + std::to_string(i) +
+                         " has a texture coordinate beyond the float range");
+    }
 }
 
 }  // namespace bsp

@@ -1,5 +1,6 @@
 #include "split/fragment_store.h"
 
+#include <cassert>
 #include <limits>
 #include <stdexcept>
 
@@ -54,6 +55,7 @@ std::uint32_t FragmentStore::add(const Polygon& poly, std::uint32_t plane, const
 }
 
 std::uint32_t FragmentStore::add(const FragmentView& f, std::uint32_t plane, const BoundingSphere& sphere) {
+  assert(f.p.empty() || f.p.data() < pos_.data() || f.p.data() >= pos_.data() + pos_.size());
   const Span s = new_span(static_cast<std::uint32_t>(f.size()));
   std::copy(f.p.begin(), f.p.end(), pos_.begin() + s.first);
   if (tex_) {
@@ -107,16 +109,8 @@ FragmentView FragmentStore::view(std::uint32_t id) const {
   return {points(id), uv, source_[id]};
 }
 
-void FragmentStore::read(std::uint32_t id, Polygon& out) const {
-  const FragmentView f = view(id);
-  out.verts.resize(f.size());
-  for (std::size_t k = 0; k < f.size(); ++k)
-    out.verts[k] = f.uv.empty() ? Vertex{f.p[k]} : Vertex{f.p[k], f.uv[k].u, f.uv[k].v};
-  out.source = f.source;
-}
-
 FragmentStore::Parts FragmentStore::split(std::uint32_t id, const Plane& plane, double eps) {
-  read(id, whole_);
+  view(id).copy_to(whole_);
   const std::uint32_t support = plane_[id];
   release(id);
   const SplitKept kept = split_into(whole_, plane, eps, front_, back_);

@@ -50,7 +50,7 @@ class FragmentStore {
 
   std::uint32_t add(const Polygon& poly, std::uint32_t plane, const BoundingSphere& sphere);
   std::uint32_t add(const Polygon& poly, std::uint32_t plane) { return add(poly, plane, bounding_sphere(poly)); }
-  // A fragment of another store.
+  // A fragment of another store (never of this one: growing the arrays would move what it views).
   std::uint32_t add(const FragmentView& f, std::uint32_t plane, const BoundingSphere& sphere);
   // Frees the fragment's id and vertices for reuse; `id` must not be used again until add returns it.
   void release(std::uint32_t id);
@@ -96,7 +96,6 @@ class FragmentStore {
 
   std::uint32_t new_id(Span span, std::uint32_t source, std::uint32_t plane, const BoundingSphere& sphere);
   Span new_span(std::uint32_t count);
-  void read(std::uint32_t id, Polygon& out) const;  // into out's reused memory
 
   bool tex_ = false;
   PageVector<Vec3> pos_;

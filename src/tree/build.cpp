@@ -268,8 +268,8 @@ std::vector<std::uint32_t> planes_to_main(PlanePool& main, Task& task) {
 // Lays the main builder's nodes and the tasks' subtrees out as one tree in pre-order (front child
 // first), the order a build without tasks makes, in arrays allocated once at their final size. A
 // task's subtree is already in pre-order, so it is copied as one block with its links shifted; its
-// fragments move into the main store (into the space of the fragments handed to the tasks), and
-// each task's store is freed as soon as it is copied.
+// fragments move into the main store (into freed spans where they fit, else at the end), and each
+// task's store is freed as soon as it is copied.
 class Assembler {
  public:
   Assembler(TreeDraft& main, std::vector<std::unique_ptr<Task>>& tasks) : main_(main), tasks_(tasks) {}
@@ -313,12 +313,7 @@ class Assembler {
     const DraftNode& old = main_.nodes[index];
     DraftNode n = old;
     n.front = n.back = kNull;  // set when the children are laid out
-    const std::uint32_t first = n.first;
-    n.first = static_cast<std::uint32_t>(fragments_.size());
-    for (std::uint32_t f = first; f < first + n.count; ++f) {
-      fragments_.push_back(main_.fragments[f]);
-      planes_.push_back(main_.fragment_plane[f]);
-    }
+    append_fragments(n, [&](std::uint32_t f) { return std::pair(main_.fragments[f], main_.fragment_plane[f]); });
     nodes_.push_back(n);
     push_child(stack, old.back, hung_[2 * index + 1], at, false);
     push_child(stack, old.front, hung_[2 * index], at, true);
@@ -338,14 +333,11 @@ class Assembler {
       if (n.plane != kNull) n.plane = remap(n.plane);
       if (n.front != kNull) n.front += offset;
       if (n.back != kNull) n.back += offset;
-      const std::uint32_t first = n.first;
-      n.first = static_cast<std::uint32_t>(fragments_.size());
-      for (std::uint32_t f = first; f < first + n.count; ++f) {
+      append_fragments(n, [&](std::uint32_t f) {
         const std::uint32_t id = task.tree.fragments[f];
         const std::uint32_t plane = remap(task.tree.fragment_plane[f]);
-        fragments_.push_back(main_.store.add(task.tree.store.view(id), plane, task.tree.store.sphere(id)));
-        planes_.push_back(plane);
-      }
+        return std::pair(main_.store.add(task.tree.store.view(id), plane, task.tree.store.sphere(id)), plane);
+      });
       nodes_.push_back(n);
     }
     BuildStats& to = main_.stats;
@@ -355,6 +347,19 @@ class Assembler {
     to.dropped_area += from.dropped_area;
     to.fallbacks += from.fallbacks;
     task = Task{};
+  }
+
+  // Appends node n's fragments, (main-store id, plane) = take(f) for each of its old positions f,
+  // and points n at them.
+  template <class Take>
+  void append_fragments(DraftNode& n, Take take) {
+    const std::uint32_t first = n.first;
+    n.first = static_cast<std::uint32_t>(fragments_.size());
+    for (std::uint32_t f = first; f < first + n.count; ++f) {
+      const auto [id, plane] = take(f);
+      fragments_.push_back(id);
+      planes_.push_back(plane);
+    }
   }
 
   std::size_t vertices_to_add() const {

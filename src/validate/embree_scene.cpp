@@ -26,8 +26,8 @@ constexpr double kMiterLimit = 8.0;
 // a hit on the box's boundary.
 constexpr double kStartMargin = 1e-3;
 
-// Rays per Embree packet: rtcIntersect16, the widest packet, which this CPU's AVX-512 kernels trace
-// natively; the validation rays of one view come in runs that point nearly the same way.
+// Rays per Embree packet: rtcIntersect16, the widest packet (AVX-512 traces it natively; Embree
+// splits it on narrower CPUs). The rays of a batch point nearly the same way (order_check.cpp).
 constexpr std::size_t kPacket = 16;
 
 // The intersect context extended with the output (FACTS.md: Embree passes our context pointer to

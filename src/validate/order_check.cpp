@@ -1,6 +1,7 @@
 #include "validate/order_check.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <iterator>
@@ -141,8 +142,12 @@ void check_ray(const EmbreeScene& scene, const Ray& ray, std::span<const Hit> hi
     }
 }
 
-void check_batch(const EmbreeScene& scene, std::span<const Ray> rays, const std::vector<std::uint32_t>& pos,
-                 HitBatch& batch, Tally& tally) {
+// The rays order[first, first + kRaysPerBatch) of `all`, copied into `rays` (a thread's reused buffer).
+void check_batch(const EmbreeScene& scene, std::span<const Ray> all, const std::vector<std::uint32_t>& order,
+                 std::size_t first, const std::vector<std::uint32_t>& pos, std::vector<Ray>& rays, HitBatch& batch,
+                 Tally& tally) {
+  rays.clear();
+  for (std::size_t i = first; i < std::min(order.size(), first + kRaysPerBatch); ++i) rays.push_back(all[order[i]]);
   scene.all_hits(rays, batch);
   for (std::size_t r = 0; r < rays.size(); ++r) check_ray(scene, rays[r], batch.of(r), pos, tally);
   compact_if_due(tally.checked, tally.compact_checked_at);
@@ -163,7 +168,7 @@ std::uint32_t spread_bits(std::uint32_t x) {
 // [Meyer2010]: rays with near codes point nearly the same way.
 std::uint32_t direction_code(const Vec3& d) {
   const double l1 = std::abs(d.x) + std::abs(d.y) + std::abs(d.z);
-  if (!(l1 > 0.0)) return 0;
+  if (!(l1 > 0.0) || !std::isfinite(l1)) return 0;
   double u = d.x / l1, v = d.y / l1;
   if (d.z < 0.0) {
     const double fu = (1.0 - std::abs(v)) * (u < 0.0 ? -1.0 : 1.0);
@@ -174,17 +179,25 @@ std::uint32_t direction_code(const Vec3& d) {
   return spread_bits(quantise(u)) | (spread_bits(quantise(v)) << 1);
 }
 
-// The rays in the order of their directions' codes. Embree traces a packet of rays that point
-// nearly the same way far faster than a scattered one, and the rays of a view (aimed at fragments
-// in tree order, then a pixel grid) come scattered; every count is the same in any order.
-std::vector<Ray> coherent_order(std::span<const Ray> rays) {
+std::array<double, 6> coordinates(const Ray& r) {
+  return {r.dir.x, r.dir.y, r.dir.z, r.origin.x, r.origin.y, r.origin.z};
+}
+
+// The indices of the rays in the order of their directions' codes. Embree traces a packet of rays
+// that point nearly the same way far faster than a scattered one, and the rays of a view (aimed at
+// fragments in tree order, then a pixel grid) come scattered. Equal codes are ordered by the rays'
+// coordinates, so the packets, and so every count, do not depend on the order the rays came in.
+std::vector<std::uint32_t> coherent_order(std::span<const Ray> rays) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> code(rays.size());
   for (std::uint32_t i = 0; i < rays.size(); ++i) code[i] = {direction_code(rays[i].dir), i};
-  std::sort(code.begin(), code.end());
-  std::vector<Ray> out;
-  out.reserve(rays.size());
-  for (const auto& c : code) out.push_back(rays[c.second]);
-  return out;
+  std::sort(code.begin(), code.end(), [&](const auto& a, const auto& b) {
+    if (a.first != b.first) return a.first < b.first;
+    return coordinates(rays[a.second]) < coordinates(rays[b.second]);
+  });
+  std::vector<std::uint32_t> order;
+  order.reserve(rays.size());
+  for (const auto& c : code) order.push_back(c.second);
+  return order;
 }
 
 OrderCheck summarise(const Tally& all, std::uint64_t rays) {
@@ -240,17 +253,17 @@ void accumulate(ValidationReport& r, const OrderCheck& c, int view) {
 OrderCheck check_order(const EmbreeScene& scene, std::span<const Ray> rays,
                        std::span<const std::uint32_t> back_to_front) {
   const std::vector<std::uint32_t> pos = positions(back_to_front, scene.fragment_count());
-  const std::vector<Ray> sorted = coherent_order(rays);
+  const std::vector<std::uint32_t> order = coherent_order(rays);
   Tally all;
   const auto batches = static_cast<std::int64_t>((rays.size() + kRaysPerBatch - 1) / kRaysPerBatch);
 #pragma omp parallel
   {
     Tally mine;
+    std::vector<Ray> batch_rays;
     HitBatch batch;
 #pragma omp for schedule(dynamic, 1) nowait
     for (std::int64_t b = 0; b < batches; ++b) {
-      const auto first = static_cast<std::size_t>(b) * kRaysPerBatch;
-      check_batch(scene, std::span(sorted).subspan(first, std::min(kRaysPerBatch, rays.size() - first)), pos, batch, mine);
+      check_batch(scene, rays, order, static_cast<std::size_t>(b) * kRaysPerBatch, pos, batch_rays, batch, mine);
     }
     // Sorting here runs on every thread; the merge below is linear.
     sort_unique(mine.checked);
