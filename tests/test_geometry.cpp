@@ -137,7 +137,7 @@ TEST(ConvexPolytope, MeasuringASplitEqualsMeasuringBothClippedParts) {
     }
     std::vector<Plane> planes = {Plane::through(random_unit(), random_point()), Plane::through({0, 0, 1}, {0, 0, 0}),
                                  Plane::through({0, 0, -1}, {0, 0, 2})};
-    const Vec3 corner = cell.faces().front().verts.front().p;
+    const Vec3 corner = cell.face(0).front();
     planes.push_back(Plane::through(random_unit(), corner));
     for (const Plane& p : planes) {
       const auto m = cell.measure_split(p, eps);

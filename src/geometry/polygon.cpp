@@ -5,18 +5,29 @@
 
 namespace bsp {
 
-Vec3 newell_normal(const Polygon& poly) {
+namespace {
+
+template <class Range, class At>
+Vec3 newell_range(const Range& v, At at) {
   Vec3 n;
-  const auto& v = poly.verts;
   for (std::size_t i = 0, k = v.size(); i < k; ++i) {
-    const Vec3& a = v[i].p;
-    const Vec3& b = v[(i + 1) % k].p;
+    const Vec3& a = at(v[i]);
+    const Vec3& b = at(v[(i + 1) % k]);
     n.x += (a.y - b.y) * (a.z + b.z);
     n.y += (a.z - b.z) * (a.x + b.x);
     n.z += (a.x - b.x) * (a.y + b.y);
   }
   return n;
 }
+
+// Lambdas, not functions: each has its own type, so the templates inline them.
+constexpr auto vertex_position = [](const Vertex& v) -> const Vec3& { return v.p; };
+constexpr auto itself = [](const Vec3& p) -> const Vec3& { return p; };
+
+}  // namespace
+
+Vec3 newell_normal(const Polygon& poly) { return newell_range(poly.verts, vertex_position); }
+Vec3 newell_normal(std::span<const Vec3> points) { return newell_range(points, itself); }
 
 double area(const Polygon& poly) { return 0.5 * length(newell_normal(poly)); }
 
@@ -63,10 +74,6 @@ bool in_front_or_on_range(const Range& verts, At at, const Plane& plane, double 
     if (plane.distance(at(v)) < -eps) return false;
   return true;
 }
-
-// Lambdas, not functions: each has its own type, so the templates above inline them.
-constexpr auto vertex_position = [](const Vertex& v) -> const Vec3& { return v.p; };
-constexpr auto itself = [](const Vec3& p) -> const Vec3& { return p; };
 
 }  // namespace
 

@@ -28,6 +28,7 @@ enum class Side : std::uint8_t { Front, Back, Coplanar, Spanning };
 
 // Newell's normal: length is twice the area; robust for nearly collinear vertices.
 Vec3 newell_normal(const Polygon& poly);
+Vec3 newell_normal(std::span<const Vec3> points);
 double area(const Polygon& poly);
 Vec3 centroid(const Polygon& poly);  // vertex average (exact for the convex fragments' samples)
 // Supporting plane through the centroid; nullopt for a degenerate polygon (zero area).

@@ -2,81 +2,90 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace bsp {
 
 namespace {
 
-Polygon quad(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  return {{{a, 0, 0}, {b, 0, 0}, {c, 0, 0}, {d, 0, 0}}, 0};
-}
-
 // Orders points lying on `plane` into a convex polygon whose Newell normal points along `outward`.
-// Points closer than eps to an earlier one are merged.
-Polygon cap_polygon(std::vector<Vec3> pts, const Vec3& outward, double eps) {
+// Points closer than eps to an earlier one are merged. Empty when fewer than 3 remain.
+std::vector<Vec3> cap_polygon(const std::vector<Vec3>& pts, const Vec3& outward, double eps) {
   std::vector<Vec3> unique;
   for (const auto& p : pts)
     if (std::none_of(unique.begin(), unique.end(), [&](const Vec3& q) { return length(p - q) <= eps; }))
       unique.push_back(p);
-  Polygon cap;
-  if (unique.size() < 3) return cap;
+  if (unique.size() < 3) return {};
   Vec3 c;
   for (const auto& p : unique) c += p;
   c = c / static_cast<double>(unique.size());
   const Vec3 u = normalize(std::abs(outward.x) < 0.9 ? cross(outward, Vec3{1, 0, 0}) : cross(outward, Vec3{0, 1, 0}));
   const Vec3 v = cross(outward, u);
-  // Counter-clockwise about `outward` in the (u, v) basis.
-  std::sort(unique.begin(), unique.end(), [&](const Vec3& a, const Vec3& b) {
-    return std::atan2(dot(a - c, v), dot(a - c, u)) < std::atan2(dot(b - c, v), dot(b - c, u));
-  });
-  for (const auto& p : unique) cap.verts.push_back({p, 0, 0});
-  return cap;
+  // Counter-clockwise about `outward` in the (u, v) basis; each angle computed once.
+  std::vector<std::pair<double, std::uint32_t>> angle(unique.size());
+  for (std::uint32_t i = 0; i < unique.size(); ++i) angle[i] = {std::atan2(dot(unique[i] - c, v), dot(unique[i] - c, u)), i};
+  std::sort(angle.begin(), angle.end());
+  std::vector<Vec3> out;
+  out.reserve(unique.size());
+  for (const auto& a : angle) out.push_back(unique[a.second]);
+  return out;
 }
 
 }  // namespace
 
+void ConvexPolytope::add_face(std::span<const Vec3> points) {
+  points_.insert(points_.end(), points.begin(), points.end());
+  start_.push_back(static_cast<std::uint32_t>(points_.size()));
+}
+
 ConvexPolytope ConvexPolytope::box(const Box& b) {
   const Vec3 l = b.lo, h = b.hi;
   ConvexPolytope p;
-  p.faces_ = {
-      quad({l.x, l.y, l.z}, {l.x, h.y, l.z}, {h.x, h.y, l.z}, {h.x, l.y, l.z}),  // z = lo, normal -z
-      quad({l.x, l.y, h.z}, {h.x, l.y, h.z}, {h.x, h.y, h.z}, {l.x, h.y, h.z}),  // z = hi, normal +z
-      quad({l.x, l.y, l.z}, {h.x, l.y, l.z}, {h.x, l.y, h.z}, {l.x, l.y, h.z}),  // y = lo, normal -y
-      quad({l.x, h.y, l.z}, {l.x, h.y, h.z}, {h.x, h.y, h.z}, {h.x, h.y, l.z}),  // y = hi, normal +y
-      quad({l.x, l.y, l.z}, {l.x, l.y, h.z}, {l.x, h.y, h.z}, {l.x, h.y, l.z}),  // x = lo, normal -x
-      quad({h.x, l.y, l.z}, {h.x, h.y, l.z}, {h.x, h.y, h.z}, {h.x, l.y, h.z}),  // x = hi, normal +x
+  const Vec3 faces[6][4] = {
+      {{l.x, l.y, l.z}, {l.x, h.y, l.z}, {h.x, h.y, l.z}, {h.x, l.y, l.z}},  // z = lo, normal -z
+      {{l.x, l.y, h.z}, {h.x, l.y, h.z}, {h.x, h.y, h.z}, {l.x, h.y, h.z}},  // z = hi, normal +z
+      {{l.x, l.y, l.z}, {h.x, l.y, l.z}, {h.x, l.y, h.z}, {l.x, l.y, h.z}},  // y = lo, normal -y
+      {{l.x, h.y, l.z}, {l.x, h.y, h.z}, {h.x, h.y, h.z}, {h.x, h.y, l.z}},  // y = hi, normal +y
+      {{l.x, l.y, l.z}, {l.x, l.y, h.z}, {l.x, h.y, h.z}, {l.x, h.y, l.z}},  // x = lo, normal -x
+      {{h.x, l.y, l.z}, {h.x, h.y, l.z}, {h.x, h.y, h.z}, {h.x, l.y, h.z}},  // x = hi, normal +x
   };
+  for (const auto& f : faces) p.add_face(f);
   return p;
 }
 
 ConvexPolytope ConvexPolytope::clipped(const Plane& keep, double eps) const {
   bool any_front = false, any_back = false;
-  for (const auto& f : faces_)
-    for (const auto& v : f.verts) {
-      const double d = keep.distance(v.p);
-      any_front |= d > eps;
-      any_back |= d < -eps;
-    }
+  for (const Vec3& v : points_) {
+    const double d = keep.distance(v);
+    any_front |= d > eps;
+    any_back |= d < -eps;
+  }
   if (!any_back) return *this;
   if (!any_front) return {};
   ConvexPolytope out;
+  out.points_.reserve(points_.size() + points_.size() / 2);
   std::vector<Vec3> on_plane;
-  for (const auto& f : faces_) {
+  // Split scratch, reused across faces and calls on this thread.
+  thread_local Polygon whole, front, back;
+  for (std::size_t i = 0; i < face_count(); ++i) {
+    const std::span<const Vec3> f = face(i);
     const Side side = classify(f, keep, eps);
     if (side == Side::Back) continue;
-    Polygon kept = f;
     if (side == Side::Spanning) {
+      whole.verts.resize(f.size());
+      for (std::size_t k = 0; k < f.size(); ++k) whole.verts[k] = Vertex{f[k]};
       // Polytope faces are never dropped as slivers: a thin face still bounds the volume.
-      SplitResult r = split(f, keep, 0.0);
-      if (!r.front) continue;
-      kept = std::move(*r.front);
+      if (!split_into(whole, keep, 0.0, front, back).front) continue;
+      for (const Vertex& v : front.verts) out.points_.push_back(v.p);
+    } else {
+      out.points_.insert(out.points_.end(), f.begin(), f.end());
     }
-    for (const auto& v : kept.verts)
-      if (std::abs(keep.distance(v.p)) <= eps) on_plane.push_back(v.p);
-    out.faces_.push_back(std::move(kept));
+    for (std::size_t k = out.start_.back(); k < out.points_.size(); ++k)
+      if (std::abs(keep.distance(out.points_[k])) <= eps) on_plane.push_back(out.points_[k]);
+    out.start_.push_back(static_cast<std::uint32_t>(out.points_.size()));
   }
-  Polygon cap = cap_polygon(std::move(on_plane), -keep.n, eps);
-  if (!cap.verts.empty()) out.faces_.push_back(std::move(cap));
+  const std::vector<Vec3> cap = cap_polygon(on_plane, -keep.n, eps);
+  if (!cap.empty()) out.add_face(cap);
   return out;
 }
 
@@ -110,38 +119,36 @@ struct NewellSum {
 // outward normal points away from, where the closure counts it, and touches the other only along
 // its edges. When no vertex lies beyond eps on one side, that side is empty, as in clipped().
 ConvexPolytope::SplitMeasure ConvexPolytope::measure_split(const Plane& plane, double eps) const {
-  // Each vertex's distance, snapped to 0 within eps, computed once: faces_ in order, vertex by vertex.
+  // Each vertex's distance, snapped to 0 within eps, computed once, parallel to points_.
   thread_local std::vector<double> dist;
-  dist.clear();
+  dist.resize(points_.size());
   bool any_front = false, any_back = false;
-  for (const auto& f : faces_)
-    for (const auto& v : f.verts) {
-      double d = plane.distance(v.p);
-      if (std::abs(d) <= eps) d = 0;
-      any_front |= d > 0;
-      any_back |= d < 0;
-      dist.push_back(d);
-    }
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    double d = plane.distance(points_[i]);
+    if (std::abs(d) <= eps) d = 0;
+    any_front |= d > 0;
+    any_back |= d < 0;
+    dist[i] = d;
+  }
   if (!any_back) return {volume(), 0.0, surface_area(), 0.0};
   if (!any_front) return {0.0, volume(), 0.0, surface_area()};
   const Vec3 o = plane.n * -plane.d;
   Vec3 front_total, back_total;
   SplitMeasure m;
-  const double* d = dist.data();
-  for (const auto& f : faces_) {
-    const std::size_t k = f.verts.size();
-    const double* fd = d;
-    d += k;
+  for (std::size_t fi = 0; fi < face_count(); ++fi) {
+    const std::span<const Vec3> f = face(fi);
+    const std::size_t k = f.size();
+    const double* fd = dist.data() + start_[fi];
     if (std::all_of(fd, fd + k, [](double x) { return x == 0; })) continue;
     NewellSum front{o, {}, {}, {}, {}}, back{o, {}, {}, {}, {}};
     for (std::size_t i = 0; i < k; ++i) {
       const std::size_t j = i + 1 == k ? 0 : i + 1;
-      const Vec3& a = f.verts[i].p;
+      const Vec3& a = f[i];
       const double da = fd[i], db = fd[j];
       if (da >= 0) front.add(a);
       if (da <= 0) back.add(a);
       if ((da > 0 && db < 0) || (da < 0 && db > 0)) {
-        const Vec3 x = a + (f.verts[j].p - a) * (da / (da - db));
+        const Vec3 x = a + (f[j] - a) * (da / (da - db));
         front.add(x);
         back.add(x);
       }
@@ -161,20 +168,19 @@ ConvexPolytope::SplitMeasure ConvexPolytope::measure_split(const Plane& plane, d
 
 double ConvexPolytope::volume() const {
   double v = 0;
-  for (const auto& f : faces_) v += dot(newell_normal(f), f.verts.front().p);
+  for (std::size_t i = 0; i < face_count(); ++i) v += dot(newell_normal(face(i)), face(i).front());
   return v / 6.0;
 }
 
 double ConvexPolytope::surface_area() const {
   double a = 0;
-  for (const auto& f : faces_) a += area(f);
+  for (std::size_t i = 0; i < face_count(); ++i) a += 0.5 * length(newell_normal(face(i)));
   return a;
 }
 
 Box ConvexPolytope::bounds() const {
   Box b;
-  for (const auto& f : faces_)
-    for (const auto& v : f.verts) b.add(v.p);
+  for (const Vec3& p : points_) b.add(p);
   return b;
 }
 

@@ -6,7 +6,10 @@
 // parent cell's volume, or of its surface area for random lines by Crofton's formula).
 //
 // Invariant: faces are convex, planar, and ordered counter-clockwise seen from outside, so each
-// face's Newell normal points out of the polytope.
+// face's Newell normal points out of the polytope. Faces are spans of one array of positions, so a
+// clip allocates a few arrays, not one per face.
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include "geometry/plane.h"
@@ -31,14 +34,18 @@ class ConvexPolytope {
   };
   SplitMeasure measure_split(const Plane& plane, double eps) const;
 
-  bool empty() const { return faces_.empty(); }
+  bool empty() const { return face_count() == 0; }
   double volume() const;        // divergence theorem: (1/3) sum of area * (n . p)
   double surface_area() const;
   Box bounds() const;
-  const std::vector<Polygon>& faces() const { return faces_; }
+  std::size_t face_count() const { return start_.size() - 1; }
+  std::span<const Vec3> face(std::size_t i) const { return {points_.data() + start_[i], start_[i + 1] - start_[i]}; }
 
  private:
-  std::vector<Polygon> faces_;
+  void add_face(std::span<const Vec3> points);
+
+  std::vector<Vec3> points_;                                // every face's vertices, face after face
+  std::vector<std::uint32_t> start_ = std::vector<std::uint32_t>(1, 0);  // face i: points_[start_[i], start_[i + 1])
 };
 
 }  // namespace bsp
