@@ -30,8 +30,8 @@ constexpr double kStartMargin = 1e-3;
 // splits it on narrower CPUs). The rays of a batch point nearly the same way (order_check.cpp).
 constexpr std::size_t kPacket = 16;
 
-// The intersect context extended with the output (FACTS.md: Embree passes our context pointer to
-// the filter, so a struct that starts with RTCIntersectContext can carry more).
+// The intersect context extended with the output (Embree passes our context pointer to the
+// filter, so a struct that starts with RTCIntersectContext can carry more).
 struct RecordingContext {
   RTCIntersectContext base;
   std::vector<std::uint64_t>* keys;

@@ -2,10 +2,10 @@
 // An independent ray caster for checking BSP results: the fragments, fan-triangulated, in one
 // Embree scene. Embree never appears in this header (pimpl), so including it costs nothing.
 //
-// Technique (FACTS.md, Embree section): rays are cast in packets of 16 (rtcIntersect16) with an
-// intersection filter that records every hit (ray id, primitive) and rejects it, so traversal
-// continues to the end of every ray. The scene is
-// built with RTC_SCENE_FLAG_ROBUST (without it ~10% of rays aimed at shared edges leak through).
+// Technique (Embree's all-hits filter [Wald2014]): rays are cast in packets of 16 (rtcIntersect16)
+// with an intersection filter that records every hit (ray id, primitive) and rejects it, so
+// traversal continues to the end of every ray. The scene is built with RTC_SCENE_FLAG_ROBUST
+// (without it ~10% of rays aimed at shared edges leak through).
 // Callbacks arrive in traversal order and may repeat a primitive, so candidates are deduplicated
 // per fragment and the hits sorted by t.
 //
