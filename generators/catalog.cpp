@@ -6,7 +6,8 @@
 namespace bsp {
 
 const std::vector<GeneratorInfo>& generators() {
-  static const std::vector<GeneratorInfo> all = {
+  static const std::vector<GeneratorInfo> all = [] {
+    std::vector<GeneratorInfo> list = {
       random_triangles_generator(),
       cyclic_overlap_generator(),
       random_disjoint_generator(),
@@ -18,7 +19,10 @@ const std::vector<GeneratorInfo>& generators() {
       orthogonal_stacks_generator(),
       coplanar_heavy_generator(),
       near_degenerate_generator(),
-  };
+    };
+    for (GeneratorInfo& g : solid_generators()) list.push_back(std::move(g));
+    return list;
+  }();
   return all;
 }
 

@@ -22,6 +22,8 @@ struct GeneratorInfo {
   // level or a finer grid), so growth against n measures the heuristic; false where each polygon
   // meets more others as n grows (random-triangles at a fixed size, the lower-bound constructions).
   bool constant_density = false;
+  // Whether the surface is closed and faces outwards, so it can become a solid tree (solids.cpp).
+  bool closed_solid = false;
 };
 
 const std::vector<GeneratorInfo>& generators();
@@ -47,5 +49,6 @@ GeneratorInfo saddle_grid_generator();
 GeneratorInfo orthogonal_stacks_generator();
 GeneratorInfo coplanar_heavy_generator();
 GeneratorInfo near_degenerate_generator();
+std::vector<GeneratorInfo> solid_generators();
 
 }  // namespace bsp

@@ -19,6 +19,7 @@ const std::vector<Command>& commands() {
       report_command(),
       order_command(),
       validate_command(),
+      merge_command(),
   };
   return all;
 }

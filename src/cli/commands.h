@@ -39,5 +39,6 @@ Command regress_command();
 Command report_command();
 Command order_command();
 Command validate_command();
+Command merge_command();
 
 }  // namespace bsp::cli

@@ -51,6 +51,19 @@ std::string chunk_text(std::span<const Polygon> polys, std::uint64_t first) {
   return out;
 }
 
+std::string comment_lines(std::string_view comment) {
+  std::string out;
+  std::size_t line_start = 0;
+  while (line_start <= comment.size() && !comment.empty()) {
+    const std::size_t end = std::min(comment.find('\n', line_start), comment.size());
+    out += "# ";
+    out += comment.substr(line_start, end - line_start);
+    out += '\n';
+    line_start = end + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string to_obj(std::span<const Polygon> polys, std::string_view comment) {
@@ -65,19 +78,31 @@ std::string to_obj(std::span<const Polygon> polys, std::string_view comment) {
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::size_t c = 0; c < chunks; ++c)
     parts[c] = chunk_text(polys.subspan(c * kChunk, std::min(kChunk, polys.size() - c * kChunk)), first[c]);
-  std::string out;
-  std::size_t line_start = 0;
-  while (line_start <= comment.size() && !comment.empty()) {
-    const std::size_t end = std::min(comment.find('\n', line_start), comment.size());
-    out += "# ";
-    out += comment.substr(line_start, end - line_start);
-    out += '\n';
-    line_start = end + 1;
-  }
+  std::string out = comment_lines(comment);
   std::size_t total = out.size();
   for (const auto& p : parts) total += p.size();
   out.reserve(total);
   for (const auto& p : parts) out += p;
+  return out;
+}
+
+std::string to_obj(const IndexedMesh& mesh, std::string_view comment) {
+  std::string out = comment_lines(comment);
+  for (const Vec3& v : mesh.vertices) {
+    out += 'v';
+    append_number(out, v.x);
+    append_number(out, v.y);
+    append_number(out, v.z);
+    out += '\n';
+  }
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    out += 'f';
+    for (std::uint32_t c = mesh.start[f]; c < mesh.start[f + 1]; ++c) {
+      out += ' ';
+      append_index(out, std::uint64_t{mesh.corners[c]} + 1);
+    }
+    out += '\n';
+  }
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 
+#include "geometry/mesh_weld.h"
 #include "geometry/polygon.h"
 
 namespace bsp {
@@ -12,5 +13,8 @@ namespace bsp {
 // round-trip form, so reading the file back gives the same doubles. `comment` (may be multi-line)
 // opens the file as "# " lines. Built in parallel chunks; the text is the same on any thread count.
 std::string to_obj(std::span<const Polygon> polys, std::string_view comment);
+
+// An indexed mesh: shared "v" lines, then one "f" line per face (no texture coordinates).
+std::string to_obj(const IndexedMesh& mesh, std::string_view comment);
 
 }  // namespace bsp

@@ -1,0 +1,128 @@
+// bspbench merge: two closed solids as solid trees built by one heuristic, merged by a set
+// operation [Naylor1990], the result proved against CGAL (validate/solid_check.h), its merge cost
+// printed, and its boundary optionally written as OBJ. Exit code 1 when the proof fails.
+#include <filesystem>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "catalog.h"
+#include "cli/commands.h"
+#include "cli/run_args.h"
+#include "common/errors.h"
+#include "io/atomic_file.h"
+#include "io/mesh_reader.h"
+#include "io/obj_writer.h"
+#include "mesh_scenes.h"
+#include "solid/solid_build.h"
+#include "split/registry.h"
+#include "validate/solid_check.h"
+
+namespace bsp::cli {
+
+namespace {
+
+constexpr long long kMaxPoints = 100'000'000;
+
+// A catalog scene (or mesh:NAME) with its parameters, else a mesh file.
+Scene operand(const std::string& spec, const std::vector<std::string>& params, std::string_view which) {
+  const bool named = is_mesh_scene(spec) ||
+                     std::any_of(generators().begin(), generators().end(), [&](const auto& g) { return g.name == spec; });
+  Scene scene;
+  if (named) {
+    ParamAssignments given;
+    for (const auto& kv : params) given.push_back(parse_assignment(kv));
+    scene = make_scene(spec, given);
+  } else {
+    if (!params.empty()) throw UsageError(std::string(which) + "-param applies to a scene, not to the file " + spec);
+    if (!std::filesystem::exists(spec)) throw UsageError("'" + spec + "' is neither a scene (bspbench scenes) nor a file");
+    scene = read_mesh(spec);
+  }
+  check_scene(scene, scene.name);
+  return scene;
+}
+
+nlohmann::json operand_json(const Scene& scene, const SolidBuild& b) {
+  const SolidSize size = solid_size(b.solid);
+  return {{"scene", scene_json(scene)},
+          {"fragments", b.fragments},
+          {"build_seconds", b.build.build_seconds},
+          {"label_seconds", b.label_seconds},
+          {"nodes", size.nodes},
+          {"depth", size.depth},
+          {"in_leaves", size.in_leaves},
+          {"out_leaves", size.out_leaves}};
+}
+
+int run(Args& args) {
+  const bool json = args.flag("--json");
+  const std::string a_spec = args.required("--a"), b_spec = args.required("--b");
+  const auto a_params = args.options("--a-param"), b_params = args.options("--b-param");
+  const SetOp op = parse_set_op(args.required("--op"));
+  const std::string heuristic = args.option("--heuristic").value_or("naylor");
+  ParamAssignments params;
+  for (const auto& kv : args.options("--param")) params.push_back(parse_assignment(kv));
+  const auto seed = static_cast<std::uint64_t>(args.integer("--seed", 0, 9'000'000'000'000'000LL).value_or(1));
+  SolidCheckSettings settings;
+  settings.points = static_cast<std::uint64_t>(args.integer("--points", 0, kMaxPoints).value_or(settings.points));
+  settings.seed = seed;
+  const auto out_path = args.option("--out");
+  args.finish();
+  if (out_path && !out_path->ends_with(".obj")) throw UsageError("--out must name a .obj file, not '" + *out_path + "'");
+
+  const Scene a = operand(a_spec, a_params, "--a"), b = operand(b_spec, b_params, "--b");
+  const Box box = solid_box(bounds(a), bounds(b));
+  const double eps = Tolerance::for_extent(box.diagonal()).plane_eps;
+  require_closed_solid(a.polygons, eps, a.name);
+  require_closed_solid(b.polygons, eps, b.name);
+  auto splitter = make_splitter(heuristic, params, seed);
+  const SolidBuild sa = build_solid(a.polygons, *splitter, box);
+  const SolidBuild sb = build_solid(b.polygons, *splitter, box);
+  MergeStats stats;
+  const SolidTree result = merge(sa.solid, sb.solid, op, &stats);
+  const ExactSolid ea(a.polygons), eb(b.polygons);
+  const SolidCheck check = check_set_operation(result, ea, eb, a.polygons, b.polygons, op, settings);
+
+  nlohmann::json out = {{"op", set_op_name(op)},
+                        {"heuristic", heuristic},
+                        {"heuristic_params", ParamSet::resolve(find_heuristic(heuristic).params, params, heuristic).to_json()},
+                        {"seed", seed},
+                        {"a", operand_json(a, sa)},
+                        {"b", operand_json(b, sb)},
+                        {"merge", to_json(stats)},
+                        {"check", to_json(check)}};
+  if (out_path) {
+    IndexedMesh mesh;
+    check_boundary(solid_boundary(result), result.tol.plane_eps, &mesh);
+    write_file_atomically(*out_path, to_obj(mesh, "bspbench merge " + std::string(set_op_name(op)) + " of " + a.name +
+                                                      " and " + b.name + " (" + heuristic + ")"));
+  }
+  if (json) {
+    std::cout << out.dump() << "\n";
+  } else {
+    for (const auto& [k, v] : out.items()) std::cout << k << ": " << v.dump() << "\n";
+  }
+  return check.ok(kVolumeRelativeTolerance) ? 0 : 1;
+}
+
+}  // namespace
+
+Command merge_command() {
+  return {"merge",
+          "--a SCENE|FILE [--a-param k=v]... --b SCENE|FILE [--b-param k=v]... --op union|intersection|difference|xor "
+          "[--heuristic H] [--param k=v]... [--seed S] [--points N] [--out RESULT.obj] [--json]",
+          "set operation on two closed solids by merging their BSP trees, proved against CGAL", run,
+          concat({{{"--a SCENE|FILE", "first operand: a closed solid scene (bspbench scenes), mesh:NAME, or a mesh file"},
+                   {"--a-param k=v", "a parameter of the first operand's scene (x, y, z, scale, n, seed...); repeatable"},
+                   {"--b SCENE|FILE", "second operand, as --a"},
+                   {"--b-param k=v", "a parameter of the second operand's scene; repeatable"},
+                   {"--op OP", "union, intersection, difference (a - b) or xor"},
+                   {"--heuristic H", "heuristic that builds both operands' trees (default naylor)"},
+                   {"--param k=v", "a heuristic parameter; repeatable"},
+                   {"--seed S", "the heuristic's seed and the check's points' (default 1)"},
+                   {"--points N", "points classified against CGAL's exact answer (default 100000)"},
+                   {"--out RESULT.obj", "write the result's boundary, welded, as OBJ (atomically)"}},
+                  kJsonOption})};
+}
+
+}  // namespace bsp::cli

@@ -1,0 +1,43 @@
+#pragma once
+// Convex polygons as bare point loops (no texture coordinates, no source): the sub-hyperplanes of
+// solid trees and the faces cut from their cells.
+//
+// Notation: d_i is the signed distance of loop vertex i to the plane, eps the on-plane tolerance.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geometry/plane.h"
+#include "geometry/vec3.h"
+
+namespace bsp {
+
+// Convex loops in one array; loop i is points[start[i], start[i + 1]).
+struct LoopPool {
+  std::vector<Vec3> points;
+  std::vector<std::uint32_t> start = std::vector<std::uint32_t>(1, 0);
+
+  std::uint32_t add(std::span<const Vec3> loop);
+  std::span<const Vec3> operator[](std::uint32_t i) const {
+    return {points.data() + start[i], start[i + 1] - start[i]};
+  }
+  std::size_t size() const { return start.size() - 1; }
+};
+
+// Splits a convex loop by a plane (Sutherland–Hodgman on both sides at once). A vertex with
+// |d_i| <= eps goes to both parts; an edge whose ends lie beyond eps on opposite sides is cut where
+// the distance changes sign. A part with fewer than 3 vertices comes back empty. `front` and
+// `back` are overwritten, so a caller splitting many loops reuses their memory.
+void split_loop(std::span<const Vec3> loop, const Plane& plane, double eps, std::vector<Vec3>& front,
+                std::vector<Vec3>& back);
+
+// The part of the plane inside the box, counter-clockwise about the plane's normal (its Newell
+// normal points along n). Empty when the plane misses the box.
+std::vector<Vec3> plane_in_box(const Plane& plane, const Box& box);
+
+// The side of the plane a loop lies on, decided by its farthest vertex: Front when the largest
+// distance beyond the plane is at least the largest behind it. Used where a tolerance decision
+// said Spanning or Coplanar but the geometry admits only one side.
+bool mostly_in_front(std::span<const Vec3> loop, const Plane& plane);
+
+}  // namespace bsp

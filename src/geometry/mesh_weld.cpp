@@ -1,0 +1,158 @@
+#include "geometry/mesh_weld.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "geometry/polygon.h"
+
+namespace bsp {
+
+namespace {
+
+// Points hashed by the integer cell of a cubic grid.
+struct CellKey {
+  std::int64_t x, y, z;
+  bool operator==(const CellKey&) const = default;
+};
+struct CellHash {
+  std::size_t operator()(const CellKey& k) const {
+    std::uint64_t h = 1469598103934665603ULL;
+    for (std::int64_t c : {k.x, k.y, k.z}) h = (h ^ static_cast<std::uint64_t>(c)) * 1099511628211ULL;
+    return h;
+  }
+};
+
+class PointGrid {
+ public:
+  explicit PointGrid(double cell) : cell_(cell) {}
+  CellKey key(const Vec3& p) const {
+    return {static_cast<std::int64_t>(std::floor(p.x / cell_)), static_cast<std::int64_t>(std::floor(p.y / cell_)),
+            static_cast<std::int64_t>(std::floor(p.z / cell_))};
+  }
+  void insert(const Vec3& p, std::uint32_t id) { cells_[key(p)].push_back(id); }
+  // Calls f(id) for every point in the 27 cells around p's cell.
+  template <class F>
+  void around(const Vec3& p, F f) const {
+    const CellKey k = key(p);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = cells_.find({k.x + dx, k.y + dy, k.z + dz});
+          if (it == cells_.end()) continue;
+          for (std::uint32_t id : it->second) f(id);
+        }
+  }
+  double cell() const { return cell_; }
+
+ private:
+  double cell_;
+  std::unordered_map<CellKey, std::vector<std::uint32_t>, CellHash> cells_;
+};
+
+}  // namespace
+
+WeldResult weld_loops(const LoopPool& loops, double tol) {
+  WeldResult r;
+  IndexedMesh& m = r.mesh;
+  PointGrid grid(std::max(tol, 1e-300));
+  std::vector<std::uint32_t> face;
+  for (std::uint32_t f = 0; f < loops.size(); ++f) {
+    face.clear();
+    for (const Vec3& p : loops[f]) {
+      std::uint32_t found = UINT32_MAX;
+      grid.around(p, [&](std::uint32_t id) {
+        if (id < found && length(m.vertices[id] - p) <= tol) found = id;
+      });
+      if (found == UINT32_MAX) {
+        found = static_cast<std::uint32_t>(m.vertices.size());
+        m.vertices.push_back(p);
+        grid.insert(p, found);
+      }
+      if (face.empty() || face.back() != found) face.push_back(found);
+    }
+    while (face.size() > 1 && face.back() == face.front()) face.pop_back();
+    if (face.size() < 3) {
+      ++r.dropped_faces;
+      continue;
+    }
+    m.corners.insert(m.corners.end(), face.begin(), face.end());
+    m.start.push_back(static_cast<std::uint32_t>(m.corners.size()));
+  }
+  return r;
+}
+
+std::uint64_t split_t_junctions(IndexedMesh& mesh, double tol) {
+  double total = 0;
+  std::uint64_t n_edges = 0;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f)
+    for (std::uint32_t i = mesh.start[f]; i < mesh.start[f + 1]; ++i) {
+      const std::uint32_t j = i + 1 == mesh.start[f + 1] ? mesh.start[f] : i + 1;
+      total += length(mesh.vertices[mesh.corners[j]] - mesh.vertices[mesh.corners[i]]);
+      ++n_edges;
+    }
+  if (n_edges == 0) return 0;
+  // Cells about the mean edge length: an edge is walked in half-cell steps, each looking at the
+  // 27 cells around it, so every vertex within tol (< a cell) of the segment is seen.
+  PointGrid grid(std::max(total / static_cast<double>(n_edges), 4 * tol));
+  for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v) grid.insert(mesh.vertices[v], v);
+  std::uint64_t inserted = 0;
+  IndexedMesh out;
+  out.vertices = mesh.vertices;
+  std::vector<std::pair<double, std::uint32_t>> on_edge;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    for (std::uint32_t i = mesh.start[f]; i < mesh.start[f + 1]; ++i) {
+      const std::uint32_t j = i + 1 == mesh.start[f + 1] ? mesh.start[f] : i + 1;
+      const std::uint32_t ia = mesh.corners[i], ib = mesh.corners[j];
+      const Vec3 a = mesh.vertices[ia], ab = mesh.vertices[ib] - a;
+      const double len2 = dot(ab, ab);
+      out.corners.push_back(ia);
+      if (len2 == 0) continue;
+      on_edge.clear();
+      const auto steps = static_cast<std::size_t>(std::ceil(std::sqrt(len2) / (0.5 * grid.cell()))) + 1;
+      for (std::size_t s = 0; s <= steps; ++s)
+        grid.around(a + ab * (static_cast<double>(s) / static_cast<double>(steps)), [&](std::uint32_t v) {
+          if (v == ia || v == ib) return;
+          const double t = dot(mesh.vertices[v] - a, ab) / len2;
+          if (t <= 0 || t >= 1) return;
+          if (length(mesh.vertices[v] - (a + ab * t)) <= tol) on_edge.push_back({t, v});
+        });
+      std::sort(on_edge.begin(), on_edge.end());
+      on_edge.erase(std::unique(on_edge.begin(), on_edge.end()), on_edge.end());
+      for (const auto& e : on_edge) out.corners.push_back(e.second);
+      inserted += on_edge.size();
+    }
+    out.start.push_back(static_cast<std::uint32_t>(out.corners.size()));
+  }
+  mesh = std::move(out);
+  return inserted;
+}
+
+EdgeReport edge_report(const IndexedMesh& mesh) {
+  std::unordered_map<std::uint64_t, std::int64_t> count;  // (lo, hi) -> uses lo->hi minus uses hi->lo
+  std::unordered_map<std::uint64_t, std::uint32_t> directed;
+  EdgeReport r;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f)
+    for (std::uint32_t i = mesh.start[f]; i < mesh.start[f + 1]; ++i) {
+      const std::uint32_t j = i + 1 == mesh.start[f + 1] ? mesh.start[f] : i + 1;
+      const std::uint64_t a = mesh.corners[i], b = mesh.corners[j];
+      if (++directed[(a << 32) | b] == 2) ++r.repeated_directed;
+      count[(std::min(a, b) << 32) | std::max(a, b)] += a < b ? 1 : -1;
+    }
+  r.edges = count.size();
+  for (const auto& [edge, balance] : count) r.border_edges += balance != 0;
+  return r;
+}
+
+double enclosed_volume(const IndexedMesh& mesh) {
+  double v = 0;
+  std::vector<Vec3> face;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    face.clear();
+    for (std::uint32_t i = mesh.start[f]; i < mesh.start[f + 1]; ++i) face.push_back(mesh.vertices[mesh.corners[i]]);
+    v += dot(newell_normal(face), face.front());
+  }
+  return v / 6.0;
+}
+
+}  // namespace bsp

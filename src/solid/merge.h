@@ -1,0 +1,63 @@
+#pragma once
+// Set operations on solid trees by merging [Naylor1990; Chrysanthou §4]: the second tree is
+// inserted into the first, partitioned at every node of the first by that node's sub-hyperplane
+// (partitionTree, §4.1), and combined with the first tree's cells by treeOpCell (Table 2.1).
+// Explicit stacks throughout: a chain-shaped operand is as deep as its mesh has faces.
+//
+// Notation: t1 is a node of the first tree A; T is the part of the second tree B inside r(t1);
+// T+ and T- are T's parts in front of and behind h(t1). s_T is where shp(T) lies against h(t1),
+// s_h where shp(t1) lies against h(T) (front, back, both, on). The 7 classifications of
+// [Chrysanthou §4.1, Figure 6] group as: shp(t1) in one subtree of T (s_h front or back, with
+// s_T front or back: 4 cases), in both (s_h and s_T both spanning), coplanar (same or opposite
+// facing).
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "solid/solid_tree.h"
+
+namespace bsp {
+
+enum class SetOp : std::uint8_t { Union, Intersection, Difference, SymmetricDifference };
+std::string_view set_op_name(SetOp op);
+SetOp parse_set_op(std::string_view name);  // union|intersection|difference|xor; throws UsageError
+
+// treeOpCell as a table [Chrysanthou Table 2.1]: what a leaf of one operand combined with the
+// other operand's tree (or leaf) T becomes.
+enum class CellResult : std::uint8_t { Out, In, Tree, Complement };
+struct CellTable {
+  CellResult first_leaf[2];   // A's leaf (index 0 OUT, 1 IN) with T from B
+  CellResult second_leaf[2];  // B's leaf (index 0 OUT, 1 IN) with T from A
+};
+CellTable cell_table(SetOp op);
+
+// What a merge did, for measuring merge cost.
+struct MergeStats {
+  std::uint64_t partition_calls = 0;  // partitionTree calls (one per internal node pair reached)
+  std::uint64_t partition_nodes = 0;  // nodes of B visited while partitioning
+  std::uint64_t shp_splits = 0;       // sub-hyperplanes cut in two (of A's nodes and of B's)
+  std::uint64_t merge_nodes = 0;      // merge steps (pairs of a node of A and a part of B)
+  std::uint64_t cell_ops = 0;         // treeOpCell calls
+  std::uint64_t complement_nodes = 0; // nodes copied to complement a subtree
+  // Places where the tolerance decisions disagreed with each other (shp(t1) spanning h(T) while
+  // shp(T) did not span h(t1), or the reverse): resolved by the farther side; the region involved
+  // is within plane_eps of both planes.
+  std::uint64_t inconsistent = 0;
+  SolidSize before;  // the merged tree as built
+  SolidSize after;   // after reduce()
+  double merge_seconds = 0;
+  double reduce_seconds = 0;
+};
+
+// A op B. Both operands must have been built in the same box (solid_box). The result is reduced.
+SolidTree merge(const SolidTree& a, const SolidTree& b, SetOp op, MergeStats* stats = nullptr);
+// The same with an explicit table: tests plant a wrong row and show the checks catch it.
+SolidTree merge_with_table(const SolidTree& a, const SolidTree& b, const CellTable& table,
+                           MergeStats* stats = nullptr);
+
+// Collapses every subtree whose leaves all carry one label into that leaf, removes nodes whose
+// plane no longer crosses their region (an empty sub-hyperplane: the child on the region's side
+// takes their place), and stores the nodes that remain in pre-order. The solid is unchanged.
+SolidTree reduce(const SolidTree& solid);
+
+}  // namespace bsp
