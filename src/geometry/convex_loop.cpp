@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/tolerance.h"
+
 namespace bsp {
 
 std::uint32_t LoopPool::add(std::span<const Vec3> loop) {
@@ -50,6 +52,13 @@ std::vector<Vec3> plane_in_box(const Plane& plane, const Box& box) {
     if (loop.empty()) break;
   }
   return loop;
+}
+
+Side classify_loop(std::span<const Vec3> loop, const Plane& own, const Plane& plane, double eps) {
+  const Side side = classify(loop, plane, eps);
+  if (side != Side::Coplanar || std::abs(dot(own.n, plane.n)) >= 1 - kParallelCosineSlack) return side;
+  const Side exact = classify(loop, plane, 0.0);
+  return exact == Side::Coplanar ? Side::Front : exact;
 }
 
 bool mostly_in_front(std::span<const Vec3> loop, const Plane& plane) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/plane.h"
+#include "geometry/polygon.h"
 #include "geometry/vec3.h"
 
 namespace bsp {
@@ -34,6 +35,12 @@ void split_loop(std::span<const Vec3> loop, const Plane& plane, double eps, std:
 // The part of the plane inside the box, counter-clockwise about the plane's normal (its Newell
 // normal points along n). Empty when the plane misses the box.
 std::vector<Vec3> plane_in_box(const Plane& plane, const Box& box);
+
+// Where a loop lying in plane `own` is against `plane`: Coplanar only when the two planes are
+// parallel (kParallelCosineSlack) and every vertex is within eps; otherwise Front, Back or
+// Spanning with eps, and, for a loop within eps of a plane it is not parallel to, by the exact
+// sign of each vertex (Front when every vertex is exactly on it).
+Side classify_loop(std::span<const Vec3> loop, const Plane& own, const Plane& plane, double eps);
 
 // The side of the plane a loop lies on, decided by its farthest vertex: Front when the largest
 // distance beyond the plane is at least the largest behind it. Used where a tolerance decision

@@ -17,6 +17,13 @@ namespace bsp {
 
 inline constexpr double kPlaneEpsRelative = 1e-9;
 
+// Two planes are parallel (so a loop within plane_eps of both lies in both) when the angle between
+// their normals is below about 4.5e-5 rad: |cos| >= 1 - kParallelCosineSlack. Planes of faces
+// that share a plane differ by rounding (1e-16); a free plane or a neighbouring face is far off.
+// Without this test a loop smaller than plane_eps / angle counts as lying in every plane that
+// passes near it, and goes whole to one side.
+inline constexpr double kParallelCosineSlack = 1e-9;
+
 struct Tolerance {
   double plane_eps = kPlaneEpsRelative;
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "common/errors.h"
+#include "solid/cells.h"
 
 namespace bsp {
 
@@ -15,14 +16,17 @@ struct Piece {
   std::uint32_t loop;
 };
 
-// Pushes the loops of `start` down from `root`; returns each final piece with the leaf it reached.
-// `off` is the direction from the pieces to the points whose labels are wanted.
-void push_down(Ref root, const LoopPool& start, const SolidTree& solid, const Vec3& off, LoopPool& pool,
+// Pushes a loop lying in plane `own` down from `root`; returns each final piece with the leaf it
+// reached. A node whose plane is `own` itself (or its flip: a cell face lies in the very plane that
+// cut it) sends the loop to the side `own` faces; any other node cuts it by the sign of each
+// vertex's distance, as the cells were cut. Deciding "coplanar" by a tolerance instead would let a
+// face skip a cell thinner than plane_eps on one side and not on the other, and count that part of
+// the boundary twice.
+void push_down(Ref root, std::span<const Vec3> start, const SolidTree& solid, const Plane& own, LoopPool& pool,
                std::vector<Piece>& reached) {
-  pool = start;
+  pool = {};
   reached.clear();
-  std::vector<Piece> stack;
-  for (std::uint32_t i = 0; i < start.size(); ++i) stack.push_back({root, i});
+  std::vector<Piece> stack{{root, pool.add(start)}};
   std::vector<Vec3> front, back;
   while (!stack.empty()) {
     const Piece p = stack.back();
@@ -32,12 +36,14 @@ void push_down(Ref root, const LoopPool& start, const SolidTree& solid, const Ve
       continue;
     }
     const SolidNode& n = solid.nodes[p.at];
-    switch (classify(pool[p.loop], n.plane, solid.tol.plane_eps)) {
+    const std::span<const Vec3> loop = pool[p.loop];
+    const Side side = n.plane == own || n.plane == own.flipped() ? Side::Coplanar : classify(loop, n.plane, 0.0);
+    switch (side) {
       case Side::Front: stack.push_back({n.front, p.loop}); break;
       case Side::Back: stack.push_back({n.back, p.loop}); break;
-      case Side::Coplanar: stack.push_back({dot(off, n.plane.n) > 0 ? n.front : n.back, p.loop}); break;
+      case Side::Coplanar: stack.push_back({dot(own.n, n.plane.n) > 0 ? n.front : n.back, p.loop}); break;
       case Side::Spanning:
-        split_loop(pool[p.loop], n.plane, solid.tol.plane_eps, front, back);
+        split_loop(loop, n.plane, 0.0, front, back);
         stack.push_back({n.front, pool.add(front)});
         stack.push_back({n.back, pool.add(back)});
         break;
@@ -48,33 +54,22 @@ void push_down(Ref root, const LoopPool& start, const SolidTree& solid, const Ve
 }  // namespace
 
 LoopPool solid_boundary(const SolidTree& solid) {
-  LoopPool out;
-  LoopPool one, in_front, pieces;
-  std::vector<Piece> front_reached, back_reached;
-  std::vector<Vec3> reversed;
-  for (std::size_t v = 0; v < solid.nodes.size(); ++v) {
-    const std::span<const Vec3> shp = solid.loops[solid.shp[v]];
-    if (shp.empty()) continue;
-    const SolidNode& n = solid.nodes[v];
-    one = {};
-    one.add(shp);
-    push_down(n.front, one, solid, n.plane.n, in_front, front_reached);
-    for (const Piece& f : front_reached) {
-      one = {};
-      one.add(in_front[f.loop]);
-      push_down(n.back, one, solid, -n.plane.n, pieces, back_reached);
-      for (const Piece& b : back_reached) {
-        if (b.at == f.at) continue;
-        const std::span<const Vec3> loop = pieces[b.loop];
-        if (f.at == kOut) {
-          out.add(loop);
-        } else {
-          reversed.assign(loop.rbegin(), loop.rend());
-          out.add(reversed);
-        }
+  LoopPool out, pieces;
+  std::vector<Piece> reached;
+  for_each_in_cell(solid, [&](const Cell& cell) {
+    for (std::uint32_t i = 0; i < cell.faces.size(); ++i) {
+      // The points just outside a face cut by node a lie in a's other child: the face lies in shp(a).
+      const Ref a = cell.cut_by[i];
+      if (a == kNoNode) {
+        out.add(cell.faces[i]);
+        continue;
       }
+      const Ref beyond = solid.nodes[a].child(dot(cell.outward[i].n, solid.nodes[a].plane.n) > 0);
+      push_down(beyond, cell.faces[i], solid, cell.outward[i], pieces, reached);
+      for (const Piece& p : reached)
+        if (p.at == kOut) out.add(pieces[p.loop]);
     }
-  }
+  });
   return out;
 }
 

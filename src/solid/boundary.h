@@ -12,10 +12,12 @@
 
 namespace bsp {
 
-// Each node's shp is pushed down its front subtree (finding the labels just in front of it) and
-// every piece then down the back subtree; pieces with different labels on the two sides are
-// boundary, facing the OUT side. A piece lying in a descendant's plane goes to the side the points
-// just off it lie on.
+// Every face of every IN cell (cells.h) is pushed down the subtree beyond the node that cut it,
+// where the points just outside it lie: the pieces that reach OUT cells are boundary, facing out.
+// (A face of the box bounds the solid where an IN cell touches the box.) A piece lying in a
+// node's plane goes to the side those points lie on; any other node cuts it by the sign of each
+// vertex's distance, as the cells are cut. So the boundary is the IN cells' own
+// faces, and encloses exactly their volume.
 LoopPool solid_boundary(const SolidTree& solid);
 
 // The boundary welded (vertices within plane_eps are one), its T-junctions split, and its edges

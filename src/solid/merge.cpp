@@ -162,7 +162,7 @@ void Merger::partition_descend(std::size_t top, const Plane& h) {
   }
   ++stats_.partition_nodes;
   const SolidNode node = w_.nodes[f.t];
-  switch (classify(w_.loops[f.shp_h], node.plane, eps_)) {
+  switch (classify_loop(w_.loops[f.shp_h], h, node.plane, eps_)) {
     case Side::Coplanar:
       // h(t1) = h(T) inside r(T): T's two sides are h(t1)'s two sides.
       frames_.pop_back();
@@ -177,7 +177,7 @@ void Merger::partition_descend(std::size_t top, const Plane& h) {
       frames_.push_back({node.back, f.shp_h, Kind::Pending});
       return;
     case Side::Spanning: {
-      split_loop(w_.loops[f.shp_h], node.plane, eps_, front_, back_);
+      split_loop(w_.loops[f.shp_h], node.plane, 0.0, front_, back_);
       ++stats_.shp_splits;
       const std::uint32_t in_front = w_.loops.add(front_);
       const std::uint32_t in_back = w_.loops.add(back_);
@@ -193,7 +193,7 @@ void Merger::partition_descend(std::size_t top, const Plane& h) {
 // contradicts shp(t1) lying on one side of h(T), and the farther side decides.
 bool Merger::shp_in_front(Ref t, const Plane& h) {
   const std::span<const Vec3> loop = w_.loops[w_.shp[t]];
-  const Side s = classify(loop, h, eps_);
+  const Side s = classify_loop(loop, w_.nodes[t].plane, h, eps_);
   if (s == Side::Front) return true;
   if (s == Side::Back) return false;
   ++stats_.inconsistent;
@@ -203,14 +203,14 @@ bool Merger::shp_in_front(Ref t, const Plane& h) {
 // Step 3: T+ and T- from the parts of the subtrees that shp(t1) reached.
 Merger::Parts Merger::partition_combine(const PartFrame& f, const Plane& h) {
   const SolidNode node = w_.nodes[f.t];
-  const std::uint32_t shp_t = w_.shp[f.t];
+  std::uint32_t shp_t = w_.shp[f.t];
   if (f.kind == Kind::InBoth) {
     const Parts back = parts_.back();
     parts_.pop_back();
     const Parts front = parts_.back();
     parts_.pop_back();
-    if (classify(w_.loops[shp_t], h, eps_) != Side::Spanning) ++stats_.inconsistent;
-    split_loop(w_.loops[shp_t], h, eps_, front_, back_);
+    if (classify_loop(w_.loops[shp_t], node.plane, h, eps_) != Side::Spanning) ++stats_.inconsistent;
+    split_loop(w_.loops[shp_t], h, 0.0, front_, back_);
     ++stats_.shp_splits;
     const std::uint32_t shp_plus = w_.loops.add(front_);
     const std::uint32_t shp_minus = w_.loops.add(back_);
@@ -226,7 +226,12 @@ Merger::Parts Merger::partition_combine(const PartFrame& f, const Plane& h) {
   const auto with_y = [&](Ref x_part) {
     return x_is_front ? w_.add_node(node.plane, shp_t, x_part, y) : w_.add_node(node.plane, shp_t, y, x_part);
   };
-  if (shp_in_front(f.t, h)) return {with_y(x.plus), x.minus};
+  const bool y_in_front = shp_in_front(f.t, h);
+  // shp(T) may reach past h(t1) by up to plane_eps; what reaches past is cut off, exactly.
+  split_loop(w_.loops[shp_t], h, 0.0, front_, back_);
+  const std::vector<Vec3>& trimmed = y_in_front ? front_ : back_;
+  if (!trimmed.empty() && trimmed.size() != w_.loops[shp_t].size()) shp_t = w_.loops.add(trimmed);
+  if (y_in_front) return {with_y(x.plus), x.minus};
   return {x.plus, with_y(x.minus)};
 }
 

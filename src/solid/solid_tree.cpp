@@ -9,6 +9,7 @@
 #include "geometry/convex_loop.h"
 #include "geometry/polygon.h"
 #include "geometry/polytope.h"
+#include "solid/cells.h"
 
 namespace bsp {
 
@@ -94,7 +95,11 @@ void compute_subhyperplanes(SolidTree& solid) {
     loop = plane_in_box(node.plane, solid.box);
     for (const Plane& p : path) {
       if (loop.empty()) break;
-      split_loop(loop, p, solid.tol.plane_eps, front, back);
+      // A plane coplanar with an ancestor's keeps its loop; any other is cut where the distance
+      // changes sign: snapping vertices within eps to the plane would move the cut along an edge
+      // that grazes the plane by far more than eps.
+      if (classify_loop(loop, node.plane, p, solid.tol.plane_eps) == Side::Coplanar) continue;
+      split_loop(loop, p, 0.0, front, back);
       loop.swap(front);
     }
     solid.shp[item.node] = solid.loops.add(loop);
@@ -139,94 +144,9 @@ SolidSize solid_size(const SolidTree& solid) {
   return size;
 }
 
-namespace {
-
-// A cell as its face loops, clipped without a tolerance: a vertex goes by the sign of its distance,
-// so no part of a cell is given to the wrong side, however thin. The cap is every cut point,
-// ordered by angle: points of one edge cut from its two faces differ by rounding and give a
-// zero-length edge, which adds nothing to the volume.
-using Cell = LoopPool;
-
-Cell box_cell(const Box& b) {
-  Cell cell;
-  const ConvexPolytope box = ConvexPolytope::box(b);
-  for (std::size_t f = 0; f < box.face_count(); ++f) cell.add(box.face(f));
-  return cell;
-}
-
-void add_cap(Cell& cell, std::vector<Vec3>& cut, const Vec3& outward) {
-  if (cut.size() < 3) return;
-  Vec3 c;
-  for (const Vec3& p : cut) c += p;
-  c = c / static_cast<double>(cut.size());
-  const Vec3 u = normalize(std::abs(outward.x) < 0.9 ? cross(outward, Vec3{1, 0, 0}) : cross(outward, Vec3{0, 1, 0}));
-  const Vec3 v = cross(outward, u);
-  std::vector<std::pair<double, Vec3>> by_angle;
-  for (const Vec3& p : cut) by_angle.push_back({std::atan2(dot(p - c, v), dot(p - c, u)), p});
-  std::sort(by_angle.begin(), by_angle.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  cut.clear();
-  for (const auto& a : by_angle) cut.push_back(a.second);
-  cell.add(cut);
-}
-
-// The parts of the cell in front of and behind the plane; either may come back empty.
-void split_cell(const Cell& cell, const Plane& plane, Cell& front, Cell& back) {
-  front = {};
-  back = {};
-  bool any_front = false, any_back = false;
-  for (const Vec3& p : cell.points) {
-    const double d = plane.distance(p);
-    any_front |= d > 0;
-    any_back |= d < 0;
-  }
-  if (!any_back || !any_front) {
-    (any_back ? back : front) = cell;
-    return;
-  }
-  std::vector<Vec3> f, b, cut;
-  for (std::uint32_t i = 0; i < cell.size(); ++i) {
-    const std::span<const Vec3> loop = cell[i];
-    split_loop(loop, plane, 0.0, f, b);
-    if (!f.empty()) front.add(f);
-    if (!b.empty()) back.add(b);
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      const Vec3& p = loop[k];
-      const Vec3& q = loop[k + 1 == loop.size() ? 0 : k + 1];
-      const double dp = plane.distance(p), dq = plane.distance(q);
-      if (dp == 0) cut.push_back(p);
-      if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) cut.push_back(p + (q - p) * (dp / (dp - dq)));
-    }
-  }
-  std::vector<Vec3> cap = cut;
-  add_cap(front, cap, -plane.n);
-  add_cap(back, cut, plane.n);
-}
-
-double cell_volume(const Cell& cell) {
-  double v = 0;
-  for (std::uint32_t i = 0; i < cell.size(); ++i) v += dot(newell_normal(cell[i]), cell[i].front());
-  return v / 6.0;
-}
-
-}  // namespace
-
 double solid_volume(const SolidTree& solid) {
   double volume = 0;
-  std::vector<std::pair<Ref, Cell>> stack;
-  stack.emplace_back(solid.root, box_cell(solid.box));
-  Cell front, back;
-  while (!stack.empty()) {
-    auto [r, cell] = std::move(stack.back());
-    stack.pop_back();
-    if (is_leaf(r)) {
-      if (r == kIn) volume += cell_volume(cell);
-      continue;
-    }
-    const SolidNode& node = solid.nodes[r];
-    split_cell(cell, node.plane, front, back);
-    if (node.back != kOut && !back.points.empty()) stack.emplace_back(node.back, std::move(back));
-    if (node.front != kOut && !front.points.empty()) stack.emplace_back(node.front, std::move(front));
-  }
+  for_each_in_cell(solid, [&](const Cell& cell) { volume += cell_volume(cell); });
   return volume;
 }
 
