@@ -71,10 +71,13 @@ std::vector<Polygon> wrapped_grid(const std::vector<Vec3>& grid, std::size_t nu,
   return out;
 }
 
-// UV sphere: 2k slices, k stacks; the stacks next to the poles are fans of triangles.
+// UV sphere: s slices, m + 1 stacks; the stacks next to the poles are fans of triangles, the
+// others quads split in two: 2 s m triangles.
 std::vector<Polygon> make_sphere(const ParamSet& p) {
   const Placement place = placement(p);
-  const std::size_t k = rounded_root(static_cast<double>(count_of(p)) / 4.0, 2), slices = 2 * k;
+  const double n = static_cast<double>(count_of(p));
+  const std::size_t m = rounded_root(n / 4.0, 1), k = m + 1;
+  const auto slices = std::max<std::size_t>(3, static_cast<std::size_t>(std::llround(n / (2.0 * static_cast<double>(m)))));
   const double pi = std::numbers::pi;
   std::vector<Vec3> ring;  // rings 1 .. k-1, each of `slices` vertices
   for (std::size_t j = 1; j < k; ++j)
@@ -255,8 +258,9 @@ std::vector<GeneratorInfo> solid_generators() {
   polytope.front().max = 5000;
   return {
       solid("sphere", "closed UV sphere: a convex solid whose autopartition is a chain",
-            "4k^2 triangles, k = max(2, round(sqrt(n/4))) (2k slices, k stacks); n = 10^4 gives exactly 10^4",
-            solid_params(1000, "number of triangles (rounded to 4k^2)"), make_sphere),
+            "2sm triangles, m = max(1, round(sqrt(n/4))), s = max(3, round(n/(2m))) (s slices, m + 1 stacks): "
+            "exactly n when 2m divides n (10^3 gives 992, 10^4 exactly 10^4, 10^5 99,856)",
+            solid_params(1000, "number of triangles (see the count rule)"), make_sphere),
       solid("torus", "closed torus (tube radius 0.35 of the ring's): a solid with a hole",
             "4k^2 triangles, k = max(3, round(sqrt(n/4))) (2k around the ring, k around the tube)",
             solid_params(1000, "number of triangles (rounded to 4k^2)"), make_torus),
@@ -271,7 +275,7 @@ std::vector<GeneratorInfo> solid_generators() {
       solid("convex-polytope", "random convex polytope: the cube [-2,2]^3 cut by n planes tangent to the unit sphere",
             "at most n + 6 faces (planes that cut nothing off leave no face)", polytope, make_convex_polytope),
       solid("menger-sponge", "Menger sponge: non-convex, tunnels through it, many coplanar faces",
-            "one unit quad per face between a kept voxel and a removed one: 72 at level 1, 1,056 at 2, 16,416 at 3 (n unused)",
+            "one unit quad per face between a kept voxel and a removed one: 72 at level 1, 1,056 at 2, 18,048 at 3 (n unused)",
             menger, make_menger),
   };
 }

@@ -164,6 +164,13 @@ const std::map<std::string, ParamAssignments>& small_instances() {
       {"orthogonal-stacks", {{"n", "108"}}},
       {"coplanar-heavy", {{"n", "300"}}},
       {"near-degenerate", {{"n", "300"}}},
+      {"sphere", {{"n", "300"}}},
+      {"torus", {{"n", "300"}}},
+      {"box", {{"n", "24"}}},
+      {"hollow-box", {{"n", "48"}}},
+      {"cylinder", {{"n", "96"}}},
+      {"convex-polytope", {{"n", "60"}}},
+      {"menger-sponge", {{"level", "1"}}},
   };
   return m;
 }
@@ -186,6 +193,13 @@ TEST(GeneratorDeterminism, PinnedHashesAtFixedParameters) {
       {"orthogonal-stacks", {{"n", "500"}, {"seed", "7"}}, "f09e855b219ab352"},
       {"coplanar-heavy", {{"n", "500"}, {"seed", "7"}}, "943de12e78c1476a"},
       {"near-degenerate", {{"n", "500"}, {"seed", "7"}}, "15e62e5743336cf6"},
+      {"sphere", {{"n", "500"}, {"seed", "7"}}, "00bf93a26fb7a7ef"},
+      {"torus", {{"n", "500"}, {"seed", "7"}}, "d48ef0a629f4ac1e"},
+      {"box", {{"n", "24"}, {"seed", "7"}}, "618dae4b38c95749"},
+      {"hollow-box", {{"n", "48"}, {"seed", "7"}}, "60c52a0386bfe2ad"},
+      {"cylinder", {{"n", "96"}, {"seed", "7"}}, "21cfb11c905d2401"},
+      {"convex-polytope", {{"n", "50"}, {"seed", "7"}}, "b95f213d680fe72f"},
+      {"menger-sponge", {{"level", "2"}, {"seed", "7"}}, "aeadb3513b8df2db"},
   };
   for (const auto& [name, params, hash] : pinned) EXPECT_EQ(hash_of(name, params), hash) << name;
   EXPECT_EQ(pinned.size(), generators().size()) << "a generator has no pinned hash";
@@ -194,8 +208,12 @@ TEST(GeneratorDeterminism, PinnedHashesAtFixedParameters) {
 TEST(GeneratorDeterminism, SameHashOnOneAndTwoThreads) {
   const int threads = omp_get_max_threads();
   for (const auto& g : generators()) {
-    // Large enough that the item loop is split into several chunks per thread.
-    const ParamAssignments params = {{"n", "20000"}, {"seed", "11"}};
+    // Large enough that the item loop is split into several chunks per thread (or the most a
+    // generator allows).
+    double n_max = 1e300;
+    for (const auto& p : g.params)
+      if (p.name == "n") n_max = p.max;
+    const ParamAssignments params = {{"n", std::to_string(static_cast<long long>(std::min(20000.0, n_max)))}, {"seed", "11"}};
     omp_set_num_threads(1);
     const std::string one = hash_of(g.name, params);
     omp_set_num_threads(2);
@@ -257,8 +275,36 @@ TEST(GeneratorCounts, FollowTheirCountRules) {
        [&](std::size_t n) { const std::size_t k = std::max<std::size_t>(1, isqrt(n / 3)); return 3 * k * k; }},
       {"coplanar-heavy", [](std::size_t n) { return n; }},
       {"near-degenerate", [](std::size_t n) { return 4 * (n >= 6 ? (n - 2) / 4 : 1) + 2; }},
+      {"sphere",
+       [](std::size_t n) {
+         const auto m = std::max<long long>(1, std::llround(std::sqrt(static_cast<double>(n) / 4)));
+         const auto s = std::max<long long>(3, std::llround(static_cast<double>(n) / (2.0 * static_cast<double>(m))));
+         return static_cast<std::size_t>(2 * s * m);
+       }},
+      {"torus",
+       [](std::size_t n) {
+         const auto v = std::max<long long>(3, std::llround(std::sqrt(static_cast<double>(n) / 4)));
+         return static_cast<std::size_t>(4 * v * v);
+       }},
+      {"box",
+       [](std::size_t n) {
+         const auto k = std::max<long long>(1, std::llround(std::sqrt(static_cast<double>(n) / 6)));
+         return static_cast<std::size_t>(6 * k * k);
+       }},
+      {"hollow-box",
+       [](std::size_t n) {
+         const auto k = std::max<long long>(1, std::llround(std::sqrt(static_cast<double>(n) / 12)));
+         return static_cast<std::size_t>(12 * k * k);
+       }},
+      {"cylinder", [](std::size_t n) { return 3 * std::max<std::size_t>(3, n / 3); }},
+      {"menger-sponge", [](std::size_t) { return std::size_t{72}; }},  // level 1, the default
   };
-  ASSERT_EQ(rule.size(), generators().size()) << "a generator has no count rule under test";
+  // The random polytope's count is a bound: planes that cut nothing off leave no face.
+  for (std::size_t n : {1, 2, 5, 7, 100, 1001, 4321}) EXPECT_LE(count_of("convex-polytope", n), n + 6) << n;
+  EXPECT_EQ(count_of("sphere", 10000), 10000u);
+  EXPECT_EQ(count_of("menger-sponge", 1, {{"level", "2"}}), 1056u);
+  EXPECT_EQ(count_of("menger-sponge", 1, {{"level", "3"}}), 18048u);
+  ASSERT_EQ(rule.size() + 1, generators().size()) << "a generator has no count rule under test";
   for (const auto& [name, expected] : rule)
     for (std::size_t n : {1, 2, 5, 7, 100, 1001, 4321}) EXPECT_EQ(count_of(name, n), expected(n)) << name << " n=" << n;
   // Parameters that enter the rules.

@@ -3,6 +3,8 @@
 // printed, and its boundary optionally written as OBJ. Exit code 1 when the proof fails.
 #include <filesystem>
 #include <iostream>
+#include <optional>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -24,8 +26,19 @@ namespace {
 
 constexpr long long kMaxPoints = 100'000'000;
 
-// A catalog scene (or mesh:NAME) with its parameters, else a mesh file.
-Scene operand(const std::string& spec, const std::vector<std::string>& params, std::string_view which) {
+// "X,Y,Z" as a vector; throws UsageError naming the option.
+Vec3 parse_offset(const std::string& text, std::string_view option) {
+  Vec3 v;
+  char comma1 = 0, comma2 = 0;
+  std::istringstream in(text);
+  if (!(in >> v.x >> comma1 >> v.y >> comma2 >> v.z) || comma1 != ',' || comma2 != ',' || !in.eof() || !is_finite(v))
+    throw UsageError(std::string(option) + " takes X,Y,Z (three finite numbers), not '" + text + "'");
+  return v;
+}
+
+// A catalog scene (or mesh:NAME) with its parameters, else a mesh file; moved by `offset`.
+Scene operand(const std::string& spec, const std::vector<std::string>& params, std::string_view which,
+              const std::optional<std::string>& offset) {
   const bool named = is_mesh_scene(spec) ||
                      std::any_of(generators().begin(), generators().end(), [&](const auto& g) { return g.name == spec; });
   Scene scene;
@@ -38,6 +51,11 @@ Scene operand(const std::string& spec, const std::vector<std::string>& params, s
     if (!std::filesystem::exists(spec)) throw UsageError("'" + spec + "' is neither a scene (bspbench scenes) nor a file");
     scene = read_mesh(spec);
   }
+  if (offset) {
+    const Vec3 d = parse_offset(*offset, std::string(which) + "-offset");
+    for (Polygon& p : scene.polygons)
+      for (Vertex& v : p.verts) v.p += d;
+  }
   check_scene(scene, scene.name);
   return scene;
 }
@@ -46,6 +64,10 @@ nlohmann::json operand_json(const Scene& scene, const SolidBuild& b) {
   const SolidSize size = solid_size(b.solid);
   return {{"scene", scene_json(scene)},
           {"fragments", b.fragments},
+          // Faces or parts narrower than plane_eps that the build dropped: the tree's solid lacks them.
+          {"dropped_input", b.build.dropped_input},
+          {"dropped_slivers", b.build.dropped_slivers},
+          {"dropped_area", b.build.dropped_area},
           {"build_seconds", b.build.build_seconds},
           {"label_seconds", b.label_seconds},
           {"nodes", size.nodes},
@@ -58,6 +80,7 @@ int run(Args& args) {
   const bool json = args.flag("--json");
   const std::string a_spec = args.required("--a"), b_spec = args.required("--b");
   const auto a_params = args.options("--a-param"), b_params = args.options("--b-param");
+  const auto a_offset = args.option("--a-offset"), b_offset = args.option("--b-offset");
   const SetOp op = parse_set_op(args.required("--op"));
   const std::string heuristic = args.option("--heuristic").value_or("naylor");
   ParamAssignments params;
@@ -70,7 +93,7 @@ int run(Args& args) {
   args.finish();
   if (out_path && !out_path->ends_with(".obj")) throw UsageError("--out must name a .obj file, not '" + *out_path + "'");
 
-  const Scene a = operand(a_spec, a_params, "--a"), b = operand(b_spec, b_params, "--b");
+  const Scene a = operand(a_spec, a_params, "--a", a_offset), b = operand(b_spec, b_params, "--b", b_offset);
   const Box box = solid_box(bounds(a), bounds(b));
   const double eps = Tolerance::for_extent(box.diagonal()).plane_eps;
   require_closed_solid(a.polygons, eps, a.name);
@@ -109,13 +132,15 @@ int run(Args& args) {
 
 Command merge_command() {
   return {"merge",
-          "--a SCENE|FILE [--a-param k=v]... --b SCENE|FILE [--b-param k=v]... --op union|intersection|difference|xor "
+          "--a SCENE|FILE [--a-param k=v]... [--a-offset X,Y,Z] --b SCENE|FILE [--b-param k=v]... [--b-offset X,Y,Z] --op union|intersection|difference|xor "
           "[--heuristic H] [--param k=v]... [--seed S] [--points N] [--out RESULT.obj] [--json]",
           "set operation on two closed solids by merging their BSP trees, proved against CGAL", run,
           concat({{{"--a SCENE|FILE", "first operand: a closed solid scene (bspbench scenes), mesh:NAME, or a mesh file"},
                    {"--a-param k=v", "a parameter of the first operand's scene (x, y, z, scale, n, seed...); repeatable"},
+                   {"--a-offset X,Y,Z", "move the first operand by this vector (meshes and files have no placement parameters)"},
                    {"--b SCENE|FILE", "second operand, as --a"},
                    {"--b-param k=v", "a parameter of the second operand's scene; repeatable"},
+                   {"--b-offset X,Y,Z", "move the second operand by this vector"},
                    {"--op OP", "union, intersection, difference (a - b) or xor"},
                    {"--heuristic H", "heuristic that builds both operands' trees (default naylor)"},
                    {"--param k=v", "a heuristic parameter; repeatable"},

@@ -39,7 +39,8 @@ std::vector<std::uint64_t> sizes_for(const GeneratorInfo& g, const SuiteBlock& b
 std::vector<std::string> scene_names(const SuiteBlock& block) {
   if (!block.scenes.empty()) return block.scenes;
   std::vector<std::string> all;
-  for (const auto& g : generators()) all.push_back(g.name);
+  for (const auto& g : generators())
+    if (!g.closed_solid) all.push_back(g.name);
   return all;
 }
 

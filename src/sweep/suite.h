@@ -30,7 +30,9 @@ struct SceneSizes {
 };
 
 struct SuiteBlock {
-  std::vector<std::string> scenes;      // empty: every generator in the catalog
+  // Empty: every generator of the catalog but the closed solids (generators/solids.cpp), which are
+  // the operands of set operations (bspbench merge) rather than scenes to draw.
+  std::vector<std::string> scenes;
   std::vector<std::string> heuristics;  // empty: every registered heuristic; ignored when incremental
   std::vector<std::uint64_t> sizes;
   std::vector<SceneSizes> scene_sizes;  // overrides `sizes` for the scenes named

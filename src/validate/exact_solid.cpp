@@ -13,6 +13,7 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -85,10 +86,14 @@ CorefineResult corefine(const ExactSolid& a, const ExactSolid& b, SetOp op) {
   const auto one = [](Mesh x, Mesh y, SetOp o) {
     Mesh out;
     bool ok = false;
-    switch (o) {
-      case SetOp::Union: ok = PMP::corefine_and_compute_union(x, y, out); break;
-      case SetOp::Intersection: ok = PMP::corefine_and_compute_intersection(x, y, out); break;
-      default: ok = PMP::corefine_and_compute_difference(x, y, out); break;
+    try {
+      switch (o) {
+        case SetOp::Union: ok = PMP::corefine_and_compute_union(x, y, out); break;
+        case SetOp::Intersection: ok = PMP::corefine_and_compute_intersection(x, y, out); break;
+        default: ok = PMP::corefine_and_compute_difference(x, y, out); break;
+      }
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("CGAL corefinement failed: ") + e.what());
     }
     if (!ok) throw std::runtime_error("CGAL corefinement failed (self-intersecting or non-manifold operands)");
     return out;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -73,7 +74,12 @@ SolidCheck check_set_operation(const SolidTree& result, const ExactSolid& a, con
   }
   c.tree_volume = solid_volume(result);
   const auto start = std::chrono::steady_clock::now();
-  c.exact_volume = corefine(a, b, op).volume;
+  try {
+    c.exact_volume = corefine(a, b, op).volume;
+  } catch (const std::runtime_error& e) {
+    c.corefine_error = e.what();
+    c.exact_volume = std::numeric_limits<double>::quiet_NaN();
+  }
   c.corefine_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double scale = std::max(std::abs(c.exact_volume), 1e-300);
   c.volume_relative_error = std::abs(c.tree_volume - c.exact_volume) / scale;
@@ -93,6 +99,7 @@ nlohmann::json to_json(const SolidCheck& c) {
           {"corefine_volume", c.exact_volume},
           {"volume_relative_error", c.volume_relative_error},
           {"corefine_seconds", c.corefine_seconds},
+          {"corefine_error", c.corefine_error},
           {"boundary",
            {{"faces", c.boundary.faces},
             {"vertices", c.boundary.vertices},

@@ -4,6 +4,7 @@
 // CGAL's corefinement; and the result's boundary closed after welding.
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -32,10 +33,11 @@ struct SolidCheck {
   double exact_volume = 0;          // CGAL corefinement's result
   double volume_relative_error = 0;
   double corefine_seconds = 0;
+  std::string corefine_error;       // why CGAL gave no volume (then the volume check fails)
   BoundaryCheck boundary;
   double boundary_volume_relative_error = 0;  // the welded boundary's volume against tree_volume
   bool ok(double volume_tolerance) const {
-    return mismatches == 0 && volume_relative_error <= volume_tolerance && boundary.edges.closed() &&
+    return mismatches == 0 && corefine_error.empty() && volume_relative_error <= volume_tolerance && boundary.edges.closed() &&
            boundary_volume_relative_error <= volume_tolerance;
   }
 };

@@ -1,0 +1,319 @@
+// Solid trees, merging and their proof against CGAL's exact geometry. Each test names the
+// degeneracy or the planted error it covers.
+#include <gtest/gtest.h>
+
+#include <pthread.h>
+
+#include <algorithm>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "catalog.h"
+#include "cli_runner.h"
+#include "common/errors.h"
+#include "solid/boundary.h"
+#include "solid/merge.h"
+#include "solid/solid_build.h"
+#include "split/registry.h"
+#include "validate/solid_check.h"
+
+namespace bsp {
+namespace {
+
+std::vector<Polygon> solid_scene(const std::string& name, const ParamAssignments& params) {
+  return make_scene(name, params).polygons;
+}
+
+struct Pair {
+  std::vector<Polygon> a, b;
+  Box box;
+};
+
+Pair make_pair_of(const std::string& name, const ParamAssignments& a, const ParamAssignments& b) {
+  Pair p{solid_scene(name, a), solid_scene(name, b), {}};
+  Box ba, bb;
+  for (const auto& poly : p.a)
+    for (const auto& v : poly.verts) ba.add(v.p);
+  for (const auto& poly : p.b)
+    for (const auto& v : poly.verts) bb.add(v.p);
+  p.box = solid_box(ba, bb);
+  return p;
+}
+
+SolidTree solid_of(const std::vector<Polygon>& polys, const std::string& heuristic, const Box& box) {
+  auto splitter = make_splitter(heuristic, {}, 1);
+  return build_solid(polys, *splitter, box).solid;
+}
+
+SolidCheck prove(const SolidTree& result, const Pair& p, SetOp op, std::uint64_t points = 4000) {
+  const ExactSolid ea(p.a), eb(p.b);
+  SolidCheckSettings settings;
+  settings.points = points;
+  return check_set_operation(result, ea, eb, p.a, p.b, op, settings);
+}
+
+const SetOp kOps[] = {SetOp::Union, SetOp::Intersection, SetOp::Difference, SetOp::SymmetricDifference};
+
+// ---- solid trees -----------------------------------------------------------------------------
+
+TEST(SolidTree, EveryHeuristicBuildsASphereThatClassifiesPointsLikeCgal) {
+  const auto sphere = solid_scene("sphere", {{"n", "300"}});
+  Box b;
+  for (const auto& poly : sphere)
+    for (const auto& v : poly.verts) b.add(v.p);
+  const Box box = solid_box(b, b);
+  const ExactSolid exact(sphere);
+  for (const auto& h : heuristics()) {
+    const SolidTree s = solid_of(sphere, h.name, box);
+    EXPECT_EQ(classify_point(s, {0, 0, 0}), PointClass::In) << h.name;
+    EXPECT_EQ(classify_point(s, {0, 0, 1.5}), PointClass::Out) << h.name;
+    Rng rng(7);
+    int wrong = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3 p{rng.uniform(-1.1, 1.1), rng.uniform(-1.1, 1.1), rng.uniform(-1.1, 1.1)};
+      if (exact.distance(p) <= s.tol.plane_eps) continue;
+      wrong += classify_point(s, p) != (exact.side(p) == ExactSide::Inside ? PointClass::In : PointClass::Out);
+    }
+    EXPECT_EQ(wrong, 0) << h.name;
+    EXPECT_NEAR(solid_volume(s), exact.volume(), 1e-12 * exact.volume()) << h.name;
+  }
+}
+
+TEST(SolidTree, PointOnAFaceIsOn) {
+  const auto box_polys = solid_scene("box", {{"seed", "0"}});
+  Box b{{-1, -1, -1}, {1, 1, 1}};
+  const SolidTree s = solid_of(box_polys, "first", solid_box(b, b));
+  EXPECT_EQ(classify_point(s, {1, 0.2, 0.3}), PointClass::On);
+  EXPECT_EQ(classify_point(s, {0.999, 0.2, 0.3}), PointClass::In);
+}
+
+TEST(SolidTree, ConvexSolidAutopartitionIsAChainHalvingIsNot) {
+  const auto sphere = solid_scene("sphere", {{"n", "1000"}});
+  Box b;
+  for (const auto& poly : sphere)
+    for (const auto& v : poly.verts) b.add(v.p);
+  const SolidSize chain = solid_size(solid_of(sphere, "first", solid_box(b, b)));
+  const SolidSize halving = solid_size(solid_of(sphere, "halving", solid_box(b, b)));
+  // Every face plane leaves the rest of a convex solid behind it: one IN cell, depth = planes.
+  EXPECT_EQ(chain.in_leaves, 1u);
+  EXPECT_EQ(chain.depth, chain.nodes);
+  EXPECT_LT(halving.depth * 4, chain.depth);
+}
+
+TEST(SolidInput, OpenOrMisorientedMeshesAreRefusedWithTheCount) {
+  auto box = solid_scene("box", {{"seed", "0"}});
+  EXPECT_NO_THROW(require_closed_solid(box, 1e-9, "box"));
+  auto open = box;
+  open.pop_back();
+  try {
+    require_closed_solid(open, 1e-9, "open-box");
+    FAIL() << "an open box was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "open-box: not a closed solid: 4 border edges");
+  }
+  auto flipped = box;
+  std::reverse(flipped[0].verts.begin(), flipped[0].verts.end());
+  EXPECT_THROW(require_closed_solid(flipped, 1e-9, "flipped-face"), InputError);
+  auto inward = box;
+  for (auto& p : inward) std::reverse(p.verts.begin(), p.verts.end());
+  try {
+    require_closed_solid(inward, 1e-9, "inward");
+    FAIL() << "an inward facing box was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("faces point inwards"), std::string::npos) << e.what();
+  }
+}
+
+// ---- merging, proved -------------------------------------------------------------------------
+
+TEST(Merge, OverlappingSpheresEveryOperationAndHeuristicMatchCgal) {
+  const Pair p = make_pair_of("sphere", {{"n", "400"}}, {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}});
+  for (const std::string h : {"first", "crystal", "halving", "naylor"}) {
+    const SolidTree a = solid_of(p.a, h, p.box), b = solid_of(p.b, h, p.box);
+    for (SetOp op : kOps) {
+      MergeStats stats;
+      const SolidTree r = merge(a, b, op, &stats);
+      const SolidCheck c = prove(r, p, op);
+      EXPECT_EQ(c.mismatches, 0u) << h << " " << set_op_name(op);
+      EXPECT_LE(c.volume_relative_error, kVolumeRelativeTolerance) << h << " " << set_op_name(op);
+      EXPECT_EQ(c.boundary.edges.border_edges, 0u) << h << " " << set_op_name(op);
+      EXPECT_LE(stats.after.nodes, stats.before.nodes);
+      EXPECT_GT(c.compared, 3000u);
+    }
+  }
+}
+
+TEST(Merge, CoplanarFacesOfTouchingBoxes) {
+  // The boxes share the plane x = 0 over a square: partitionTree's coplanar case, both facings.
+  const Pair p = make_pair_of("box", {{"seed", "0"}, {"n", "24"}}, {{"seed", "0"}, {"x", "1"}, {"y", "0.5"}});
+  const SolidTree a = solid_of(p.a, "first", p.box), b = solid_of(p.b, "first", p.box);
+  for (SetOp op : kOps) {
+    const SolidCheck c = prove(merge(a, b, op), p, op);
+    EXPECT_TRUE(c.ok(kVolumeRelativeTolerance)) << set_op_name(op) << " " << c.mismatches << " "
+                                                << c.volume_relative_error << " " << c.boundary.edges.border_edges;
+  }
+}
+
+TEST(Merge, IdenticalOperandsEveryPlaneCoplanar) {
+  const Pair p = make_pair_of("menger-sponge", {{"seed", "3"}}, {{"seed", "3"}});
+  const SolidTree a = solid_of(p.a, "naylor", p.box), b = solid_of(p.b, "halving", p.box);
+  const double v = solid_volume(a);
+  EXPECT_NEAR(solid_volume(merge(a, b, SetOp::Union)), v, 1e-12 * v);
+  EXPECT_NEAR(solid_volume(merge(a, b, SetOp::Intersection)), v, 1e-12 * v);
+  const SolidTree nothing = merge(a, b, SetOp::Difference);
+  EXPECT_NEAR(solid_volume(nothing), 0.0, 1e-12 * v);
+  EXPECT_EQ(solid_size(nothing).nodes, 0u) << "A - A must reduce to one OUT leaf";
+  EXPECT_EQ(nothing.root, kOut);
+}
+
+TEST(Merge, SolidWithACavityAgainstATorus) {
+  const Pair p = make_pair_of("hollow-box", {{"seed", "0"}}, {{"n", "800"}, {"seed", "5"}, {"x", "0.4"}});
+  const SolidTree a = solid_of(p.a, "crystal", p.box), b = solid_of(p.b, "crystal", p.box);
+  for (SetOp op : kOps) EXPECT_TRUE(prove(merge(a, b, op), p, op).ok(kVolumeRelativeTolerance)) << set_op_name(op);
+}
+
+// Runs f on a thread with a 256 KB stack: a recursive walk of a chain thousands deep overflows it.
+template <class F>
+void on_small_stack(F f) {
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, 256 * 1024);
+  pthread_t thread;
+  ASSERT_EQ(pthread_create(&thread, &attr, [](void* arg) -> void* { (*static_cast<F*>(arg))(); return nullptr; }, &f), 0);
+  pthread_join(thread, nullptr);
+  pthread_attr_destroy(&attr);
+}
+
+TEST(Merge, ChainOperandsDeeperThanASmallStackAllows) {
+  // first on a sphere: a chain as deep as the sphere has face planes; building its solid,
+  // merging, reducing and cutting cells walk it with explicit stacks.
+  const Pair p = make_pair_of("sphere", {{"n", "6000"}}, {{"n", "6000"}, {"x", "0.5"}, {"scale", "0.9"}});
+  SolidTree a, b, r;
+  MergeStats stats;
+  double volume = 0;
+  on_small_stack([&] {
+    a = solid_of(p.a, "first", p.box);
+    b = solid_of(p.b, "first", p.box);
+    r = merge(a, b, SetOp::Intersection, &stats);
+    volume = solid_volume(r);
+  });
+  EXPECT_GE(solid_size(a).depth, 2900u);
+  EXPECT_GE(stats.after.depth, 1500u);
+  const ExactSolid ea(p.a), eb(p.b);
+  EXPECT_NEAR(volume, corefine(ea, eb, SetOp::Intersection).volume, 1e-9 * volume);
+}
+
+TEST(Merge, SameInputsGiveTheSameTreeBitForBit) {
+  const Pair p = make_pair_of("torus", {{"n", "600"}}, {{"n", "600"}, {"x", "0.7"}, {"seed", "4"}});
+  const SolidTree a = solid_of(p.a, "naylor", p.box), b = solid_of(p.b, "naylor", p.box);
+  const SolidTree r1 = merge(a, b, SetOp::Difference), r2 = merge(a, b, SetOp::Difference);
+  ASSERT_EQ(r1.nodes.size(), r2.nodes.size());
+  EXPECT_EQ(r1.root, r2.root);
+  for (std::size_t i = 0; i < r1.nodes.size(); ++i) {
+    EXPECT_EQ(r1.nodes[i].plane, r2.nodes[i].plane);
+    EXPECT_EQ(r1.nodes[i].front, r2.nodes[i].front);
+    EXPECT_EQ(r1.nodes[i].back, r2.nodes[i].back);
+  }
+}
+
+TEST(Merge, OperandsFromDifferentBoxesAreRejected) {
+  const auto s = solid_scene("sphere", {{"n", "100"}});
+  const SolidTree a = solid_of(s, "first", {{-2, -2, -2}, {2, 2, 2}});
+  const SolidTree b = solid_of(s, "first", {{-3, -3, -3}, {3, 3, 3}});
+  EXPECT_THROW(merge(a, b, SetOp::Union), std::invalid_argument);
+}
+
+// ---- the checks catch planted errors ----------------------------------------------------------
+
+TEST(SolidCheck, CatchesAFlippedLeafLabel) {
+  const Pair p = make_pair_of("sphere", {{"n", "400"}}, {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}});
+  const SolidTree a = solid_of(p.a, "naylor", p.box), b = solid_of(p.b, "naylor", p.box);
+  SolidTree r = merge(a, b, SetOp::Union);
+  ASSERT_TRUE(prove(r, p, SetOp::Union).ok(kVolumeRelativeTolerance));
+  // Flip the IN leaf with the largest cell: a point check and the volume check must both see it.
+  for (SolidNode& n : r.nodes)
+    if (n.back == kIn) {
+      n.back = kOut;
+      break;
+    }
+  const SolidCheck c = prove(r, p, SetOp::Union, 20000);
+  EXPECT_GT(c.volume_relative_error, kVolumeRelativeTolerance);
+  EXPECT_FALSE(c.ok(kVolumeRelativeTolerance));
+}
+
+TEST(SolidCheck, CatchesAWrongTreeOpCellRow) {
+  const Pair p = make_pair_of("sphere", {{"n", "400"}}, {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}});
+  const SolidTree a = solid_of(p.a, "halving", p.box), b = solid_of(p.b, "halving", p.box);
+  CellTable wrong = cell_table(SetOp::Difference);
+  wrong.first_leaf[1] = CellResult::Tree;  // IN - T = T instead of its complement
+  const SolidCheck c = prove(merge_with_table(a, b, wrong), p, SetOp::Difference);
+  EXPECT_GT(c.mismatches, 100u);
+  EXPECT_GT(c.volume_relative_error, 1e-3);
+  EXPECT_FALSE(c.ok(kVolumeRelativeTolerance));
+}
+
+TEST(SolidCheck, CatchesAnOpenBoundary) {
+  const Pair p = make_pair_of("sphere", {{"n", "400"}}, {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}});
+  const SolidTree r = merge(solid_of(p.a, "crystal", p.box), solid_of(p.b, "crystal", p.box), SetOp::Union);
+  const LoopPool faces = solid_boundary(r);
+  EXPECT_TRUE(check_boundary(faces, r.tol.plane_eps).edges.closed());
+  // Drop the largest face (small ones may be slivers that welding removes anyway).
+  std::uint32_t largest = 0;
+  for (std::uint32_t f = 1; f < faces.size(); ++f)
+    if (length(newell_normal(faces[f])) > length(newell_normal(faces[largest]))) largest = f;
+  LoopPool missing_one;
+  for (std::uint32_t f = 0; f < faces.size(); ++f)
+    if (f != largest) missing_one.add(faces[f]);
+  EXPECT_FALSE(check_boundary(missing_one, r.tol.plane_eps).edges.closed());
+}
+
+TEST(MeshWeld, TJunctionsAreSplitSoNeighboursShareEdges) {
+  // A unit square next to two half squares: the big one's edge has the halves' middle vertex on it.
+  LoopPool loops;
+  const std::vector<Vec3> big = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const std::vector<Vec3> low = {{1, 0, 0}, {2, 0, 0}, {2, 0.5, 0}, {1, 0.5, 0}};
+  const std::vector<Vec3> high = {{1, 0.5, 0}, {2, 0.5, 0}, {2, 1, 0}, {1, 1, 0}};
+  loops.add(big);
+  loops.add(low);
+  loops.add(high);
+  WeldResult w = weld_loops(loops, 1e-12);
+  const EdgeReport before = edge_report(w.mesh);
+  EXPECT_EQ(split_t_junctions(w.mesh, 1e-12), 1u);
+  const EdgeReport after = edge_report(w.mesh);
+  // The shared stretch x = 1 is one edge before the split, two after, both used both ways.
+  EXPECT_EQ(before.border_edges, 10u);
+  EXPECT_EQ(after.border_edges, 7u);
+}
+
+// ---- the command -----------------------------------------------------------------------------
+
+TEST(MergeCli, ProvesAUnionAndWritesAClosedObj) {
+  const auto dir = testing::fresh_test_dir("merge_cli");
+  const auto r = testing::run_bspbench(
+      "merge --a sphere --a-param n=500 --b sphere --b-param n=500 --b-param x=0.5 --op union --heuristic naylor "
+      "--points 2000 --json --out " + (dir / "u.obj").string(), dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"mismatches\":0"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "u.obj"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(MergeCli, OpenMeshFileIsOneLineExitTwoNoOutput) {
+  const auto dir = testing::fresh_test_dir("merge_cli");
+  {
+    std::ofstream f(dir / "open.off");
+    f << "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n";
+  }
+  const auto r = testing::run_bspbench("merge --a " + (dir / "open.off").string() +
+                                           " --b sphere --op union --out " + (dir / "r.obj").string(),
+                                       dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("open.off: not a closed solid: 4 border edges"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.obj"));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace bsp
