@@ -15,6 +15,10 @@
 #include "solid/boundary.h"
 #include "solid/merge.h"
 #include "solid/solid_build.h"
+#include "solid/view_cull.h"
+#include "metrics/traversal_cost.h"
+#include "tree/build.h"
+#include "validate/order_check.h"
 #include "split/registry.h"
 #include "validate/solid_check.h"
 
@@ -313,6 +317,119 @@ TEST(MergeCli, OpenMeshFileIsOneLineExitTwoNoOutput) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
   EXPECT_FALSE(std::filesystem::exists(dir / "r.obj"));
   std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace bsp
+
+// ---- view-volume culling by merging ------------------------------------------------------------
+
+namespace bsp {
+namespace {
+
+// Whether a fragment reaches into the frustum by more than eps: what is left of it after cutting
+// away, by exact signs, everything in front of each outward plane, measured by its width.
+bool meets_frustum(const FragmentView& frag, const std::vector<Plane>& outward, double eps) {
+  std::vector<Vec3> loop(frag.p.begin(), frag.p.end()), inside, outside;
+  for (const Plane& p : outward) {
+    if (loop.empty()) return false;
+    split_loop(loop, p.flipped(), 0.0, inside, outside);
+    loop.swap(inside);
+  }
+  if (loop.size() < 3) return false;
+  double longest = 0;
+  for (std::size_t i = 0; i < loop.size(); ++i) longest = std::max(longest, length(loop[(i + 1) % loop.size()] - loop[i]));
+  return longest > 0 && 0.5 * length(newell_normal(loop)) / longest > eps;
+}
+
+struct MergeCullResult {
+  std::uint64_t views = 0, emitted = 0, corner_emitted = 0, missed = 0, not_subsequence = 0, left_out_meeting = 0;
+  std::uint64_t violations = 0;
+};
+
+MergeCullResult check_merge_culling(const Tree& tree, std::uint32_t views) {
+  MergeCullResult r;
+  for (const Frustum& f : metric_views(tree.bounds, views)) {
+    ++r.views;
+    const auto merged = merged_visibility_order(tree, f);
+    const auto corners = culled_visibility_order(tree, f);
+    r.emitted += merged.size();
+    r.corner_emitted += corners.size();
+    // A subsequence of the corner-culled order.
+    auto it = corners.begin();
+    for (auto i : merged) {
+      it = std::find(it, corners.end(), i);
+      if (it == corners.end()) {
+        ++r.not_subsequence;
+        break;
+      }
+    }
+    const auto planes = frustum_planes(f);
+    std::vector<bool> in_merged(tree.fragments.size());
+    for (auto i : merged) in_merged[i] = true;
+    for (std::uint32_t i = 0; i < tree.fragments.size(); ++i)
+      if (!in_merged[i] && meets_frustum(tree.fragments[i], planes, tree.tol.plane_eps)) ++r.missed;
+    // The order of what it emits, against Embree.
+    std::vector<Polygon> polys;
+    for (auto i : merged) {
+      Polygon p;
+      for (const Vec3& v : tree.fragments[i].p) p.verts.push_back({v});
+      polys.push_back(std::move(p));
+    }
+    std::vector<std::uint32_t> order(polys.size());
+    for (std::uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    ValidationSettings quick;
+    quick.grid = 24;
+    if (!polys.empty()) r.violations += validate_order(polys, f.eye, order, quick).violations;
+  }
+  return r;
+}
+
+class MergeCulling : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(MergeCulling, EmitsEveryFragmentInViewInOrderAndNoMoreThanTheCornerTest) {
+  for (Shape shape : {Shape::Strict, Shape::Coarse}) {
+    const Scene scene = make_scene(GetParam(), {{"n", "300"}});
+    auto splitter = make_splitter("random", {}, 1);
+    BuildOptions options;
+    options.shape = shape;
+    const Tree tree = build_tree(scene.polygons, *splitter, options);
+    const MergeCullResult r = check_merge_culling(tree, 6);
+    EXPECT_EQ(r.missed, 0u) << "fragments meeting the frustum left out";
+    EXPECT_EQ(r.not_subsequence, 0u) << "emitted out of the corner-culled order";
+    EXPECT_EQ(r.violations, 0u) << "Embree order violations";
+    EXPECT_LE(r.emitted, r.corner_emitted);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalog, MergeCulling, ::testing::ValuesIn([] {
+                           std::vector<std::string> names;
+                           for (const auto& g : generators())
+                             if (!g.closed_solid) names.push_back(g.name);
+                           return names;
+                         }()),
+                         [](const auto& info) {
+                           std::string s = info.param;
+                           std::replace(s.begin(), s.end(), '-', '_');
+                           return s;
+                         });
+
+TEST(MergeCullingCheck, CorruptedTreeLosesFragmentsInView) {
+  const Scene scene = make_scene("random-triangles", {{"n", "400"}});
+  auto splitter = make_splitter("random", {}, 1);
+  Tree tree = build_tree(scene.polygons, *splitter);
+  ASSERT_EQ(check_merge_culling(tree, 8).missed, 0u);
+  std::swap(tree.nodes[0].front, tree.nodes[0].back);
+  EXPECT_GT(check_merge_culling(tree, 8).missed, 0u);
+}
+
+TEST(MergeCullingCheck, CullsMoreThanTheCornerTestOnALevel) {
+  const Scene scene = make_scene("architecture", {{"n", "2000"}});
+  auto splitter = make_splitter("crystal", {}, 1);
+  const Tree tree = build_tree(scene.polygons, *splitter);
+  const MergeCullResult r = check_merge_culling(tree, 8);
+  EXPECT_EQ(r.missed, 0u);
+  EXPECT_LT(r.emitted, r.corner_emitted) << "regions the volume does not reach should be skipped";
 }
 
 }  // namespace

@@ -40,5 +40,6 @@ Command report_command();
 Command order_command();
 Command validate_command();
 Command merge_command();
+Command classify_command();
 
 }  // namespace bsp::cli

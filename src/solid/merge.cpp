@@ -67,37 +67,18 @@ SolidTree combined(const SolidTree& a, const SolidTree& b, Ref& b_root) {
 class Merger {
  public:
   Merger(SolidTree& work, const CellTable& table, MergeStats& stats)
-      : w_(work), table_(table), stats_(stats), eps_(work.tol.plane_eps) {}
+      : w_(work), table_(table), stats_(stats), partitioner_(work, stats) {}
 
   Ref merge(Ref a_root, Ref b_root);
 
  private:
-  struct Parts {
-    Ref plus, minus;  // T+ and T-
-  };
-  // One pending partitionTree(T, shp(t1)): Pending until classified, then waiting for the parts of
-  // the subtrees it descended into.
-  enum class Kind : std::uint8_t { Pending, InFront, InBack, InBoth };
-  struct PartFrame {
-    Ref t;
-    std::uint32_t shp_h;  // shp(t1) inside r(T)
-    Kind kind;
-  };
-
-  Parts partition(Ref t, std::uint32_t shp_h, const Plane& h);
-  void partition_descend(std::size_t top, const Plane& h);
-  Parts partition_combine(const PartFrame& f, const Plane& h);
-  bool shp_in_front(Ref t, const Plane& h);
   Ref cell_op(Ref a, Ref b);
   Ref complement(Ref t);
 
   SolidTree& w_;
   const CellTable& table_;
   MergeStats& stats_;
-  const double eps_;
-  std::vector<PartFrame> frames_;
-  std::vector<Parts> parts_;
-  std::vector<Vec3> front_, back_;
+  Partitioner partitioner_;
 };
 
 Ref Merger::merge(Ref a_root, Ref b_root) {
@@ -117,7 +98,7 @@ Ref Merger::merge(Ref a_root, Ref b_root) {
       }
       ++stats_.merge_nodes;
       const SolidNode na = w_.nodes[f.a];
-      const Parts p = partition(f.b, w_.shp[f.a], na.plane);
+      const Partitioner::Parts p = partitioner_.partition(f.b, w_.shp[f.a], na.plane);
       frames.back().combining = true;
       frames.push_back({na.back, p.minus, false});
       frames.push_back({na.front, p.plus, false});
@@ -132,107 +113,6 @@ Ref Merger::merge(Ref a_root, Ref b_root) {
     frames.pop_back();
   }
   return results.back();
-}
-
-Merger::Parts Merger::partition(Ref t, std::uint32_t shp_h, const Plane& h) {
-  ++stats_.partition_calls;
-  frames_.assign(1, {t, shp_h, Kind::Pending});
-  parts_.clear();
-  while (!frames_.empty()) {
-    const std::size_t top = frames_.size() - 1;
-    if (frames_[top].kind == Kind::Pending) {
-      partition_descend(top, h);
-      continue;
-    }
-    const PartFrame f = frames_[top];
-    frames_.pop_back();
-    parts_.push_back(partition_combine(f, h));
-  }
-  return parts_.back();
-}
-
-// Step 1 of partitionTree: where shp(t1) lies against h(T). A leaf, or coplanar planes, give the
-// parts at once; otherwise the subtrees shp(t1) reaches are partitioned first (step 2).
-void Merger::partition_descend(std::size_t top, const Plane& h) {
-  const PartFrame f = frames_[top];
-  if (is_leaf(f.t)) {
-    frames_.pop_back();
-    parts_.push_back({f.t, f.t});
-    return;
-  }
-  ++stats_.partition_nodes;
-  const SolidNode node = w_.nodes[f.t];
-  switch (classify_loop(w_.loops[f.shp_h], h, node.plane, eps_)) {
-    case Side::Coplanar:
-      // h(t1) = h(T) inside r(T): T's two sides are h(t1)'s two sides.
-      frames_.pop_back();
-      parts_.push_back(dot(node.plane.n, h.n) > 0 ? Parts{node.front, node.back} : Parts{node.back, node.front});
-      return;
-    case Side::Front:
-      frames_[top].kind = Kind::InFront;
-      frames_.push_back({node.front, f.shp_h, Kind::Pending});
-      return;
-    case Side::Back:
-      frames_[top].kind = Kind::InBack;
-      frames_.push_back({node.back, f.shp_h, Kind::Pending});
-      return;
-    case Side::Spanning: {
-      split_loop(w_.loops[f.shp_h], node.plane, 0.0, front_, back_);
-      ++stats_.shp_splits;
-      const std::uint32_t in_front = w_.loops.add(front_);
-      const std::uint32_t in_back = w_.loops.add(back_);
-      frames_[top].kind = Kind::InBoth;
-      frames_.push_back({node.back, in_back, Kind::Pending});
-      frames_.push_back({node.front, in_front, Kind::Pending});
-      return;
-    }
-  }
-}
-
-// Where shp(T) lies against h(t1), for the one-subtree cases: a spanning or coplanar answer there
-// contradicts shp(t1) lying on one side of h(T), and the farther side decides.
-bool Merger::shp_in_front(Ref t, const Plane& h) {
-  const std::span<const Vec3> loop = w_.loops[w_.shp[t]];
-  const Side s = classify_loop(loop, w_.nodes[t].plane, h, eps_);
-  if (s == Side::Front) return true;
-  if (s == Side::Back) return false;
-  ++stats_.inconsistent;
-  return mostly_in_front(loop, h);
-}
-
-// Step 3: T+ and T- from the parts of the subtrees that shp(t1) reached.
-Merger::Parts Merger::partition_combine(const PartFrame& f, const Plane& h) {
-  const SolidNode node = w_.nodes[f.t];
-  std::uint32_t shp_t = w_.shp[f.t];
-  if (f.kind == Kind::InBoth) {
-    const Parts back = parts_.back();
-    parts_.pop_back();
-    const Parts front = parts_.back();
-    parts_.pop_back();
-    if (classify_loop(w_.loops[shp_t], node.plane, h, eps_) != Side::Spanning) ++stats_.inconsistent;
-    split_loop(w_.loops[shp_t], h, 0.0, front_, back_);
-    ++stats_.shp_splits;
-    const std::uint32_t shp_plus = w_.loops.add(front_);
-    const std::uint32_t shp_minus = w_.loops.add(back_);
-    return {w_.add_node(node.plane, shp_plus, front.plus, back.plus),
-            w_.add_node(node.plane, shp_minus, front.minus, back.minus)};
-  }
-  // shp(t1) lies in one subtree X of T; the other, Y, lies wholly on the side of h(t1) that shp(T)
-  // is on (Figure 7), and T keeps its node on that side only.
-  const Parts x = parts_.back();
-  parts_.pop_back();
-  const bool x_is_front = f.kind == Kind::InFront;
-  const Ref y = x_is_front ? node.back : node.front;
-  const auto with_y = [&](Ref x_part) {
-    return x_is_front ? w_.add_node(node.plane, shp_t, x_part, y) : w_.add_node(node.plane, shp_t, y, x_part);
-  };
-  const bool y_in_front = shp_in_front(f.t, h);
-  // shp(T) may reach past h(t1) by up to plane_eps; what reaches past is cut off, exactly.
-  split_loop(w_.loops[shp_t], h, 0.0, front_, back_);
-  const std::vector<Vec3>& trimmed = y_in_front ? front_ : back_;
-  if (!trimmed.empty() && trimmed.size() != w_.loops[shp_t].size()) shp_t = w_.loops.add(trimmed);
-  if (y_in_front) return {with_y(x.plus), x.minus};
-  return {x.plus, with_y(x.minus)};
 }
 
 Ref Merger::cell_op(Ref a, Ref b) {
@@ -323,6 +203,116 @@ RegionSide region_side(const SolidTree& s, Ref v, const std::vector<Plane>& path
 }
 
 }  // namespace
+
+Partitioner::Partitioner(SolidTree& work, MergeStats& stats, bool collapse_uniform)
+    : w_(work), stats_(stats), eps_(work.tol.plane_eps), collapse_uniform_(collapse_uniform) {}
+
+Ref Partitioner::node(const Plane& plane, std::uint32_t shp, Ref front, Ref back) {
+  if (collapse_uniform_ && is_leaf(front) && front == back) return front;
+  return w_.add_node(plane, shp, front, back);
+}
+
+Partitioner::Parts Partitioner::partition(Ref t, std::uint32_t shp_h, const Plane& h) {
+  ++stats_.partition_calls;
+  frames_.assign(1, {t, shp_h, Kind::Pending});
+  parts_.clear();
+  while (!frames_.empty()) {
+    const std::size_t top = frames_.size() - 1;
+    if (frames_[top].kind == Kind::Pending) {
+      partition_descend(top, h);
+      continue;
+    }
+    const PartFrame f = frames_[top];
+    frames_.pop_back();
+    parts_.push_back(partition_combine(f, h));
+  }
+  return parts_.back();
+}
+
+// Step 1 of partitionTree: where shp(t1) lies against h(T). A leaf, or coplanar planes, give the
+// parts at once; otherwise the subtrees shp(t1) reaches are partitioned first (step 2).
+void Partitioner::partition_descend(std::size_t top, const Plane& h) {
+  const PartFrame f = frames_[top];
+  if (is_leaf(f.t)) {
+    frames_.pop_back();
+    parts_.push_back({f.t, f.t});
+    return;
+  }
+  ++stats_.partition_nodes;
+  const SolidNode node = w_.nodes[f.t];
+  switch (classify_loop(w_.loops[f.shp_h], h, node.plane, eps_)) {
+    case Side::Coplanar:
+      // h(t1) = h(T) inside r(T): T's two sides are h(t1)'s two sides.
+      frames_.pop_back();
+      parts_.push_back(dot(node.plane.n, h.n) > 0 ? Parts{node.front, node.back} : Parts{node.back, node.front});
+      return;
+    case Side::Front:
+      frames_[top].kind = Kind::InFront;
+      frames_.push_back({node.front, f.shp_h, Kind::Pending});
+      return;
+    case Side::Back:
+      frames_[top].kind = Kind::InBack;
+      frames_.push_back({node.back, f.shp_h, Kind::Pending});
+      return;
+    case Side::Spanning: {
+      split_loop(w_.loops[f.shp_h], node.plane, 0.0, front_, back_);
+      ++stats_.shp_splits;
+      const std::uint32_t in_front = w_.loops.add(front_);
+      const std::uint32_t in_back = w_.loops.add(back_);
+      frames_[top].kind = Kind::InBoth;
+      frames_.push_back({node.back, in_back, Kind::Pending});
+      frames_.push_back({node.front, in_front, Kind::Pending});
+      return;
+    }
+  }
+}
+
+// Where shp(T) lies against h(t1), for the one-subtree cases: a spanning or coplanar answer there
+// contradicts shp(t1) lying on one side of h(T), and the farther side decides.
+bool Partitioner::shp_in_front(Ref t, const Plane& h) {
+  const std::span<const Vec3> loop = w_.loops[w_.shp[t]];
+  const Side s = classify_loop(loop, w_.nodes[t].plane, h, eps_);
+  if (s == Side::Front) return true;
+  if (s == Side::Back) return false;
+  ++stats_.inconsistent;
+  return mostly_in_front(loop, h);
+}
+
+// Step 3: T+ and T- from the parts of the subtrees that shp(t1) reached.
+Partitioner::Parts Partitioner::partition_combine(const PartFrame& f, const Plane& h) {
+  const SolidNode node = w_.nodes[f.t];
+  std::uint32_t shp_t = w_.shp[f.t];
+  if (f.kind == Kind::InBoth) {
+    const Parts back = parts_.back();
+    parts_.pop_back();
+    const Parts front = parts_.back();
+    parts_.pop_back();
+    if (classify_loop(w_.loops[shp_t], node.plane, h, eps_) != Side::Spanning) ++stats_.inconsistent;
+    split_loop(w_.loops[shp_t], h, 0.0, front_, back_);
+    ++stats_.shp_splits;
+    const std::uint32_t shp_plus = w_.loops.add(front_);
+    const std::uint32_t shp_minus = w_.loops.add(back_);
+    return {this->node(node.plane, shp_plus, front.plus, back.plus),
+            this->node(node.plane, shp_minus, front.minus, back.minus)};
+  }
+  // shp(t1) lies in one subtree X of T; the other, Y, lies wholly on the side of h(t1) that shp(T)
+  // is on (Figure 7), and T keeps its node on that side only.
+  const Parts x = parts_.back();
+  parts_.pop_back();
+  const bool x_is_front = f.kind == Kind::InFront;
+  const Ref y = x_is_front ? node.back : node.front;
+  const auto with_y = [&](Ref x_part) {
+    return x_is_front ? this->node(node.plane, shp_t, x_part, y) : this->node(node.plane, shp_t, y, x_part);
+  };
+  const bool y_in_front = shp_in_front(f.t, h);
+  // shp(T) may reach past h(t1) by up to plane_eps; what reaches past is cut off, exactly.
+  split_loop(w_.loops[shp_t], h, 0.0, front_, back_);
+  const std::vector<Vec3>& trimmed = y_in_front ? front_ : back_;
+  if (!trimmed.empty() && trimmed.size() != w_.loops[shp_t].size()) shp_t = w_.loops.add(trimmed);
+  if (y_in_front) return {with_y(x.plus), x.minus};
+  return {x.plus, with_y(x.minus)};
+}
+
 
 SolidTree reduce(const SolidTree& solid) {
   // 1. Nodes whose plane misses their region give way to the child on the region's side.

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "solid/solid_tree.h"
 
@@ -47,6 +48,44 @@ struct MergeStats {
   SolidSize after;   // after reduce()
   double merge_seconds = 0;
   double reduce_seconds = 0;
+};
+
+// partitionTree (§4.1) on its own: the parts of tree T (a subtree of `work`) in front of and behind
+// plane h, given h's sub-hyperplane inside r(T) as a loop of work.loops. New nodes and loops are
+// appended to `work`; T itself is not changed, and its unchanged subtrees are shared by the parts.
+// Merging uses it, and so does view-volume culling, which merges as it traverses.
+class Partitioner {
+ public:
+  // With collapse_uniform, a part whose two children are the same leaf is that leaf, so a part
+  // holding nothing of the solid is OUT at once (what view-volume culling needs to skip a side);
+  // merging leaves that to reduce(), to report the sizes before and after.
+  Partitioner(SolidTree& work, MergeStats& stats, bool collapse_uniform = false);
+  struct Parts {
+    Ref plus, minus;  // T+ and T-
+  };
+  Parts partition(Ref t, std::uint32_t shp_h, const Plane& h);
+
+ private:
+  // One pending partitionTree(T, shp(t1)): Pending until classified, then waiting for the parts of
+  // the subtrees it descended into.
+  enum class Kind : std::uint8_t { Pending, InFront, InBack, InBoth };
+  struct PartFrame {
+    Ref t;
+    std::uint32_t shp_h;  // shp(t1) inside r(T)
+    Kind kind;
+  };
+  void partition_descend(std::size_t top, const Plane& h);
+  Parts partition_combine(const PartFrame& f, const Plane& h);
+  bool shp_in_front(Ref t, const Plane& h);
+  Ref node(const Plane& plane, std::uint32_t shp, Ref front, Ref back);
+
+  SolidTree& w_;
+  MergeStats& stats_;
+  const double eps_;
+  const bool collapse_uniform_;
+  std::vector<PartFrame> frames_;
+  std::vector<Parts> parts_;
+  std::vector<Vec3> front_, back_;
 };
 
 // A op B. Both operands must have been built in the same box (solid_box). The result is reduced.

@@ -1,0 +1,174 @@
+// bspbench_bench_merge: set operations by merging solid BSP trees [Naylor1990] beside CGAL's
+// corefinement of the same meshes, in the same run:
+//   merge/OP/PAIR/n:N/HEURISTIC   one iteration = build both operands' solid trees + merge +
+//       reduce; items = input triangles of both operands; counters:
+//       build_seconds, merge_seconds (merge and reduce), the medians of the iterations;
+//       corefine_seconds: median of CGAL PMP::corefine_and_compute_OP on the same two meshes
+//           (copies of both go in, since corefinement changes its inputs; the copies are timed);
+//       merge_vs_corefine (builds included) and merge_only_vs_corefine (merge and reduce only);
+//       volume_difference: |IN cells' volume - corefinement's| / corefinement's;
+//       result_nodes, result_depth (after reduce), nodes_before_reduce; partition_nodes,
+//       shp_splits (merge cost); operand_nodes (both operands).
+// PAIR is sphere (the second sphere 0.9 the radius, its centre half a radius away; n triangles
+// each) or a CGAL sample mesh with a copy of itself moved by 5% of its box (mesh:NAME), when the
+// mesh cache has it.
+//
+// Which heuristics run where: chains (first and the autopartitions on a convex sphere) make merging
+// quadratic in time and memory (crystal's 10^5-sphere union ran out of 24 GB), and naylor's build
+// on a 10^4 sphere takes seconds; so 10^5 runs halving only, and naylor stops at 10^4.
+// Select with --bsp_heuristics and --bsp_sizes (bench_common.h), e.g.
+//   build/bench/bspbench_bench_merge --bsp_sizes=10000 --bsp_heuristics=halving
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "bench_common.h"
+#include "catalog.h"
+#include "mesh_scenes.h"
+#include "metrics/statistics.h"
+#include "solid/solid_build.h"
+#include "split/registry.h"
+#include "validate/exact_solid.h"
+
+namespace bsp::bench {
+
+namespace {
+
+constexpr int kReferenceRepeats = 5;
+constexpr std::uint64_t kLargeN = 100000;    // from here, halving only
+constexpr std::uint64_t kNaylorMaxN = 10000;
+constexpr benchmark::IterationCount kSlowRuns = 3;  // iterations of runs that take seconds each
+constexpr double kMeshOffset = 0.05;                // of the mesh's bounding box, per axis
+
+using Clock = std::chrono::steady_clock;
+
+struct Operands {
+  std::vector<Polygon> a, b;
+  Box box;
+  std::unique_ptr<ExactSolid> exact_a, exact_b;
+};
+
+Box bounds_of(const std::vector<Polygon>& polys) {
+  Box b;
+  for (const auto& p : polys)
+    for (const auto& v : p.verts) b.add(v.p);
+  return b;
+}
+
+Operands make_operands(std::vector<Polygon> a, std::vector<Polygon> b) {
+  Operands o{std::move(a), std::move(b), {}, nullptr, nullptr};
+  o.box = solid_box(bounds_of(o.a), bounds_of(o.b));
+  o.exact_a = std::make_unique<ExactSolid>(o.a);
+  o.exact_b = std::make_unique<ExactSolid>(o.b);
+  return o;
+}
+
+const Operands& sphere_pair(std::uint64_t n) {
+  static std::map<std::uint64_t, Operands> cache;
+  auto it = cache.find(n);
+  if (it == cache.end()) {
+    const std::string count = std::to_string(n);
+    it = cache.emplace(n, make_operands(scene("sphere", {{"n", count}}).polygons,
+                                        scene("sphere", {{"n", count}, {"x", "0.5"}, {"scale", "0.9"}}).polygons))
+             .first;
+  }
+  return it->second;
+}
+
+const Operands& mesh_pair(const std::string& name) {
+  static std::map<std::string, Operands> cache;
+  auto it = cache.find(name);
+  if (it == cache.end()) {
+    std::vector<Polygon> a = scene(name, {}).polygons, b = a;
+    const Vec3 d = bounds_of(a).size() * kMeshOffset;
+    for (auto& p : b)
+      for (auto& v : p.verts) v.p += d;
+    it = cache.emplace(name, make_operands(std::move(a), std::move(b))).first;
+  }
+  return it->second;
+}
+
+void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp op) {
+  std::vector<double> builds, merges;
+  SolidTree result;
+  MergeStats stats;
+  std::uint64_t operand_nodes = 0;
+  for (auto _ : state) {
+    const auto start = Clock::now();
+    auto splitter = make_splitter(h, {}, kSeed);
+    const SolidBuild a = build_solid(o->a, *splitter, o->box);
+    const SolidBuild b = build_solid(o->b, *splitter, o->box);
+    builds.push_back(seconds_since(start));
+    const auto merge_start = Clock::now();
+    result = merge(a.solid, b.solid, op, &stats);
+    merges.push_back(seconds_since(merge_start));
+    operand_nodes = a.solid.nodes.size() + b.solid.nodes.size();
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(o->a.size() + o->b.size()));
+  std::vector<double> corefines;
+  double exact_volume = 0;
+  for (int i = 0; i < kReferenceRepeats; ++i) {
+    const auto start = Clock::now();
+    exact_volume = corefine(*o->exact_a, *o->exact_b, op).volume;
+    corefines.push_back(seconds_since(start));
+  }
+  const double build = median(builds), merge_only = median(merges), reference = median(corefines);
+  state.counters["build_seconds"] = build;
+  state.counters["merge_seconds"] = merge_only;
+  state.counters["corefine_seconds"] = reference;
+  state.counters["merge_vs_corefine"] = (build + merge_only) / reference;
+  state.counters["merge_only_vs_corefine"] = merge_only / reference;
+  state.counters["volume_difference"] = std::abs(solid_volume(result) - exact_volume) / std::abs(exact_volume);
+  state.counters["result_nodes"] = static_cast<double>(stats.after.nodes);
+  state.counters["result_depth"] = static_cast<double>(stats.after.depth);
+  state.counters["nodes_before_reduce"] = static_cast<double>(stats.before.nodes);
+  state.counters["partition_nodes"] = static_cast<double>(stats.partition_nodes);
+  state.counters["shp_splits"] = static_cast<double>(stats.shp_splits);
+  state.counters["operand_nodes"] = static_cast<double>(operand_nodes);
+}
+
+bool runs_at(const std::string& h, std::uint64_t n) {
+  if (n >= kLargeN) return h == "halving";
+  return h != "naylor" || n <= kNaylorMaxN;
+}
+
+void register_one(const std::string& pair, std::uint64_t n, const Operands* o, const std::string& h, SetOp op) {
+  const std::string name = "merge/" + std::string(set_op_name(op)) + "/" + pair + "/n:" + std::to_string(n) + "/" + h;
+  auto* b = benchmark::RegisterBenchmark(name.c_str(), bm_merge, o, h, op);
+  b->Unit(benchmark::kMillisecond)->UseRealTime();
+  if (n >= 10000) b->Iterations(kSlowRuns);
+}
+
+void register_all(const Selection& sel) {
+  const SetOp ops[] = {SetOp::Union, SetOp::Intersection, SetOp::Difference};
+  for (auto n : sel.sizes)
+    for (const auto& h : sel.heuristics)
+      if (runs_at(h, n))
+        for (SetOp op : ops) register_one("sphere", n, &sphere_pair(n), h, op);
+  const std::vector<MeshEntry> meshes = available_meshes();
+  for (const std::string mesh : {"mesh:elephant", "mesh:dino"}) {
+    if (std::none_of(meshes.begin(), meshes.end(), [&](const auto& m) { return "mesh:" + m.name == mesh; })) continue;
+    const Operands* o = &mesh_pair(mesh);
+    for (const auto& h : sel.heuristics)
+      if (runs_at(h, o->a.size()))
+        for (SetOp op : ops) register_one(mesh, o->a.size(), o, h, op);
+  }
+}
+
+}  // namespace
+
+}  // namespace bsp::bench
+
+int main(int argc, char** argv) {
+  try {
+    const auto sel =
+        bsp::bench::take_selection(argc, argv, {{}, {"first", "crystal", "halving", "naylor"}, {1000, 10000, 100000}});
+    bsp::bench::register_all(sel);
+    return bsp::bench::run_benchmarks(argc, argv, "bspbench_bench_merge");
+  } catch (const std::exception& e) {
+    std::cerr << "bspbench_bench_merge: " << e.what() << "\n";
+    return 2;
+  }
+}
