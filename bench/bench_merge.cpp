@@ -6,6 +6,9 @@
 //       corefine_seconds: median of CGAL PMP::corefine_and_compute_OP on the same two meshes
 //           (copies of both go in, since corefinement changes its inputs; the copies are timed);
 //       merge_vs_corefine (builds included) and merge_only_vs_corefine (merge and reduce only);
+//       up to 10^4 triangles each, nef_seconds: median of CGAL's Nef polyhedra doing the same
+//           (both conversions to Nef included; measured once per operands and operation), and
+//           merge_vs_nef (builds included);
 //       volume_difference: |IN cells' volume - corefinement's| / corefinement's;
 //       result_nodes, result_depth (after reduce), nodes_before_reduce; partition_nodes,
 //       shp_splits (merge cost); operand_nodes (both operands).
@@ -41,10 +44,13 @@ constexpr std::uint64_t kLargeN = 100000;    // from here, halving only
 constexpr std::uint64_t kNaylorMaxN = 10000;
 constexpr benchmark::IterationCount kSlowRuns = 3;  // iterations of runs that take seconds each
 constexpr double kMeshOffset = 0.05;                // of the mesh's bounding box, per axis
+constexpr std::uint64_t kNefMaxN = 10000;           // Nef polyhedra take about a second at 10^4
+constexpr int kNefRepeats = 3;
 
 using Clock = std::chrono::steady_clock;
 
 struct Operands {
+  std::string name;
   std::vector<Polygon> a, b;
   Box box;
   std::unique_ptr<ExactSolid> exact_a, exact_b;
@@ -57,8 +63,8 @@ Box bounds_of(const std::vector<Polygon>& polys) {
   return b;
 }
 
-Operands make_operands(std::vector<Polygon> a, std::vector<Polygon> b) {
-  Operands o{std::move(a), std::move(b), {}, nullptr, nullptr};
+Operands make_operands(std::string name, std::vector<Polygon> a, std::vector<Polygon> b) {
+  Operands o{std::move(name), std::move(a), std::move(b), {}, nullptr, nullptr};
   o.box = solid_box(bounds_of(o.a), bounds_of(o.b));
   o.exact_a = std::make_unique<ExactSolid>(o.a);
   o.exact_b = std::make_unique<ExactSolid>(o.b);
@@ -70,7 +76,7 @@ const Operands& sphere_pair(std::uint64_t n) {
   auto it = cache.find(n);
   if (it == cache.end()) {
     const std::string count = std::to_string(n);
-    it = cache.emplace(n, make_operands(scene("sphere", {{"n", count}}).polygons,
+    it = cache.emplace(n, make_operands("sphere/" + count, scene("sphere", {{"n", count}}).polygons,
                                         scene("sphere", {{"n", count}, {"x", "0.5"}, {"scale", "0.9"}}).polygons))
              .first;
   }
@@ -85,9 +91,27 @@ const Operands& mesh_pair(const std::string& name) {
     const Vec3 d = bounds_of(a).size() * kMeshOffset;
     for (auto& p : b)
       for (auto& v : p.verts) v.p += d;
-    it = cache.emplace(name, make_operands(std::move(a), std::move(b))).first;
+    it = cache.emplace(name, make_operands(name, std::move(a), std::move(b))).first;
   }
   return it->second;
+}
+
+// Median seconds of Nef polyhedra on the operands, measured once per operands and operation.
+double nef_seconds(const Operands& o, SetOp op, double& volume) {
+  static std::map<std::pair<std::string, SetOp>, std::pair<double, double>> measured;
+  const auto key = std::make_pair(o.name, op);
+  if (auto it = measured.find(key); it == measured.end()) {
+    std::vector<double> times;
+    double v = 0;
+    for (int i = 0; i < kNefRepeats; ++i) {
+      const NefResult r = nef_set_operation(o.a, o.b, op);
+      times.push_back(r.seconds);
+      v = r.volume;
+    }
+    measured[key] = {median(times), v};
+  }
+  volume = measured[key].second;
+  return measured[key].first;
 }
 
 void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp op) {
@@ -127,6 +151,13 @@ void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp o
   state.counters["partition_nodes"] = static_cast<double>(stats.partition_nodes);
   state.counters["shp_splits"] = static_cast<double>(stats.shp_splits);
   state.counters["operand_nodes"] = static_cast<double>(operand_nodes);
+  if (std::max(o->a.size(), o->b.size()) <= kNefMaxN) {
+    double nef_volume = 0;
+    const double nef = nef_seconds(*o, op, nef_volume);
+    state.counters["nef_seconds"] = nef;
+    state.counters["merge_vs_nef"] = (build + merge_only) / nef;
+    state.counters["nef_volume_difference"] = std::abs(nef_volume - exact_volume) / std::abs(exact_volume);
+  }
 }
 
 bool runs_at(const std::string& h, std::uint64_t n) {

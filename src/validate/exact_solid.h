@@ -43,4 +43,13 @@ struct CorefineResult {
 };
 CorefineResult corefine(const ExactSolid& a, const ExactSolid& b, SetOp op);
 
+// The same operation with CGAL's Nef polyhedra (exact constructions; exact_nef.cpp): both meshes
+// converted to Nef polyhedra, then combined. Returns the seconds it took, conversions included, and
+// the result's volume (its boundary as a triangle mesh, measured exactly).
+struct NefResult {
+  double seconds = 0;
+  double volume = 0;
+};
+NefResult nef_set_operation(std::span<const Polygon> a, std::span<const Polygon> b, SetOp op);
+
 }  // namespace bsp
