@@ -434,3 +434,28 @@ TEST(MergeCullingCheck, CullsMoreThanTheCornerTestOnALevel) {
 
 }  // namespace
 }  // namespace bsp
+
+namespace bsp {
+namespace {
+
+TEST(ClassifyCli, AnswersPointQueriesAndRefusesABadPointsFile) {
+  const auto dir = testing::fresh_test_dir("classify_cli");
+  {
+    std::ofstream f(dir / "points.txt");
+    f << "# centre, far away, on a face\n0 0 0\n5 0 0\n\n1 0.25 0.5\n";
+  }
+  const auto r = testing::run_bspbench("classify --solid box --solid-param seed=0 --points " + (dir / "points.txt").string(), dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "in\nout\non\n");
+  {
+    std::ofstream f(dir / "bad.txt");
+    f << "0 0 0\n1 2\n";
+  }
+  const auto bad = testing::run_bspbench("classify --solid box --points " + (dir / "bad.txt").string(), dir);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("bad.txt: line 2: expected three finite numbers"), std::string::npos) << bad.err;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace bsp

@@ -6,11 +6,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "catalog.h"
 #include "cli/commands.h"
+#include "cli/run_args.h"
 #include "common/errors.h"
-#include "io/mesh_reader.h"
-#include "mesh_scenes.h"
 #include "solid/boundary.h"
 #include "solid/solid_build.h"
 #include "split/registry.h"
@@ -38,17 +36,6 @@ std::vector<Vec3> read_points(const std::string& path) {
   return points;
 }
 
-Scene solid_scene(const std::string& spec, const std::vector<std::string>& params) {
-  const bool named = is_mesh_scene(spec) ||
-                     std::any_of(generators().begin(), generators().end(), [&](const auto& g) { return g.name == spec; });
-  if (!named && !params.empty()) throw UsageError("--solid-param applies to a scene, not to the file " + spec);
-  ParamAssignments given;
-  for (const auto& kv : params) given.push_back(parse_assignment(kv));
-  Scene scene = named ? make_scene(spec, given) : read_mesh(spec);
-  check_scene(scene, scene.name);
-  return scene;
-}
-
 int run(Args& args) {
   const bool json = args.flag("--json");
   const std::string spec = args.required("--solid");
@@ -58,7 +45,7 @@ int run(Args& args) {
   ParamAssignments hparams;
   for (const auto& kv : args.options("--param")) hparams.push_back(parse_assignment(kv));
   args.finish();
-  const Scene scene = solid_scene(spec, params);
+  const Scene scene = scene_or_file(spec, params, "--solid-param");
   const std::vector<Vec3> points = read_points(points_path);
   const Box box = solid_box(bounds(scene), bounds(scene));
   require_closed_solid(scene.polygons, Tolerance::for_extent(box.diagonal()).plane_eps, scene.name);

@@ -1,21 +1,17 @@
 // bspbench merge: two closed solids as solid trees built by one heuristic, merged by a set
 // operation [Naylor1990], the result proved against CGAL (validate/solid_check.h), its merge cost
 // printed, and its boundary optionally written as OBJ. Exit code 1 when the proof fails.
-#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
-#include "catalog.h"
 #include "cli/commands.h"
 #include "cli/run_args.h"
 #include "common/errors.h"
 #include "io/atomic_file.h"
-#include "io/mesh_reader.h"
 #include "io/obj_writer.h"
-#include "mesh_scenes.h"
 #include "solid/solid_build.h"
 #include "split/registry.h"
 #include "validate/solid_check.h"
@@ -36,27 +32,16 @@ Vec3 parse_offset(const std::string& text, std::string_view option) {
   return v;
 }
 
-// A catalog scene (or mesh:NAME) with its parameters, else a mesh file; moved by `offset`.
+// The operand's scene or file, moved by `offset`.
 Scene operand(const std::string& spec, const std::vector<std::string>& params, std::string_view which,
               const std::optional<std::string>& offset) {
-  const bool named = is_mesh_scene(spec) ||
-                     std::any_of(generators().begin(), generators().end(), [&](const auto& g) { return g.name == spec; });
-  Scene scene;
-  if (named) {
-    ParamAssignments given;
-    for (const auto& kv : params) given.push_back(parse_assignment(kv));
-    scene = make_scene(spec, given);
-  } else {
-    if (!params.empty()) throw UsageError(std::string(which) + "-param applies to a scene, not to the file " + spec);
-    if (!std::filesystem::exists(spec)) throw UsageError("'" + spec + "' is neither a scene (bspbench scenes) nor a file");
-    scene = read_mesh(spec);
-  }
+  Scene scene = scene_or_file(spec, params, std::string(which) + "-param");
   if (offset) {
     const Vec3 d = parse_offset(*offset, std::string(which) + "-offset");
     for (Polygon& p : scene.polygons)
       for (Vertex& v : p.verts) v.p += d;
+    check_scene(scene, scene.name);
   }
-  check_scene(scene, scene.name);
   return scene;
 }
 

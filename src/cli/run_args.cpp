@@ -1,5 +1,7 @@
 #include "cli/run_args.h"
 
+#include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -82,6 +84,23 @@ BuildOptions build_options_from(Args& args, std::uint64_t seed) {
   options.order = order == "shuffled" ? InsertOrder::Shuffled : InsertOrder::Given;
   options.order_seed = insertion_order_seed(seed);
   return options;
+}
+
+Scene scene_or_file(const std::string& spec, const std::vector<std::string>& params, std::string_view option) {
+  const bool named = is_mesh_scene(spec) ||
+                     std::any_of(generators().begin(), generators().end(), [&](const auto& g) { return g.name == spec; });
+  Scene scene;
+  if (named) {
+    ParamAssignments given;
+    for (const auto& kv : params) given.push_back(parse_assignment(kv));
+    scene = make_scene(spec, given);
+  } else {
+    if (!params.empty()) throw UsageError(std::string(option) + " applies to a scene, not to the file " + spec);
+    if (!std::filesystem::exists(spec)) throw UsageError("'" + spec + "' is neither a scene (bspbench scenes) nor a file");
+    scene = read_mesh(spec);
+  }
+  check_scene(scene, scene.name);
+  return scene;
 }
 
 Tree build_from_args(const Scene& scene, const TreeArgs& t) {
