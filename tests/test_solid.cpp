@@ -428,6 +428,8 @@ TEST(MergeCullingCheck, CullsMoreThanTheCornerTestOnALevel) {
   auto splitter = make_splitter("crystal", {}, 1);
   const Tree tree = build_tree(scene.polygons, *splitter);
   const MergeCullResult r = check_merge_culling(tree, 8);
+  RecordProperty("emitted_by_merging", std::to_string(r.emitted));
+  RecordProperty("emitted_by_corner_test", std::to_string(r.corner_emitted));
   EXPECT_EQ(r.missed, 0u);
   EXPECT_LT(r.emitted, r.corner_emitted) << "regions the volume does not reach should be skipped";
 }
