@@ -461,3 +461,25 @@ TEST(ClassifyCli, AnswersPointQueriesAndRefusesABadPointsFile) {
 
 }  // namespace
 }  // namespace bsp
+
+namespace bsp {
+namespace {
+
+TEST(MergeCli, SelfIntersectingMeshIsRefused) {
+  // Two overlapping tetrahedra in one file: closed and outward facing, but not the boundary of a
+  // solid (CGAL's volume counts the overlap twice; a solid tree would count it once).
+  const auto dir = testing::fresh_test_dir("merge_cli");
+  {
+    std::ofstream f(dir / "two.off");
+    f << "OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0.2 0.2 0.2\n1.2 0.2 0.2\n0.2 1.2 0.2\n0.2 0.2 1.2\n"
+         "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 4 6 5\n3 4 5 7\n3 4 7 6\n3 5 6 7\n";
+  }
+  const auto r = testing::run_bspbench("merge --a " + (dir / "two.off").string() + " --b sphere --op union", dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("two.off: not the boundary of a solid:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("pairs of faces intersect"), std::string::npos) << r.err;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace bsp

@@ -83,12 +83,16 @@ int run(Args& args) {
   const double eps = Tolerance::for_extent(box.diagonal()).plane_eps;
   require_closed_solid(a.polygons, eps, a.name);
   require_closed_solid(b.polygons, eps, b.name);
+  const ExactSolid ea(a.polygons), eb(b.polygons);
+  for (const auto& [scene, exact] : {std::pair{&a, &ea}, std::pair{&b, &eb}})
+    if (const std::size_t n = exact->self_intersecting_pairs(); n > 0)
+      throw InputError(scene->name + ": not the boundary of a solid: " + std::to_string(n) +
+                       " pairs of faces intersect");
   auto splitter = make_splitter(heuristic, params, seed);
   const SolidBuild sa = build_solid(a.polygons, *splitter, box);
   const SolidBuild sb = build_solid(b.polygons, *splitter, box);
   MergeStats stats;
   const SolidTree result = merge(sa.solid, sb.solid, op, &stats);
-  const ExactSolid ea(a.polygons), eb(b.polygons);
   const SolidCheck check = check_set_operation(result, ea, eb, a.polygons, b.polygons, op, settings);
 
   nlohmann::json out = {{"op", set_op_name(op)},

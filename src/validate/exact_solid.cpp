@@ -7,10 +7,12 @@
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -77,6 +79,12 @@ double ExactSolid::distance(const Vec3& p) const {
 
 double ExactSolid::volume() const { return CGAL::to_double(PMP::volume(impl_->mesh)); }
 std::size_t ExactSolid::triangles() const { return impl_->mesh.number_of_faces(); }
+
+std::size_t ExactSolid::self_intersecting_pairs() const {
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> pairs;
+  PMP::self_intersections(impl_->mesh, std::back_inserter(pairs));
+  return pairs.size();
+}
 
 struct CorefineAccess {
   static Mesh mesh(const ExactSolid& s) { return s.impl_->mesh; }

@@ -27,6 +27,10 @@ class ExactSolid {
   double distance(const Vec3& p) const;  // to the surface (AABB tree; rounded constructions)
   double volume() const;
   std::size_t triangles() const;
+  // Pairs of triangles that intersect other than along a shared edge or vertex (exact predicates).
+  // A surface with any is not the boundary of a solid: its faces' facing and its signed volume
+  // disagree about what is inside.
+  std::size_t self_intersecting_pairs() const;
 
  private:
   friend struct CorefineAccess;
