@@ -53,23 +53,39 @@ class PointGrid {
 }  // namespace
 
 WeldResult weld_loops(const LoopPool& loops, double tol) {
+  // Union-find over all corners: two corners within tol are one vertex, and so, transitively, is
+  // every chain of them. A greedy first-come weld is not transitive (a within tol of b, b of c, but
+  // not a of c) and leaves the two faces around such a chain with edges that do not match.
+  const std::vector<Vec3>& pts = loops.points;
+  std::vector<std::uint32_t> parent(pts.size());
+  for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  const auto find = [&](std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  PointGrid grid(std::max(tol, 1e-300));
+  for (std::uint32_t i = 0; i < pts.size(); ++i) {
+    grid.around(pts[i], [&](std::uint32_t j) {
+      if (length(pts[j] - pts[i]) > tol) return;
+      const std::uint32_t a = find(i), b = find(j);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smallest index represents
+    });
+    grid.insert(pts[i], i);
+  }
   WeldResult r;
   IndexedMesh& m = r.mesh;
-  PointGrid grid(std::max(tol, 1e-300));
+  std::vector<std::uint32_t> vertex_of(pts.size(), UINT32_MAX);
   std::vector<std::uint32_t> face;
   for (std::uint32_t f = 0; f < loops.size(); ++f) {
     face.clear();
-    for (const Vec3& p : loops[f]) {
-      std::uint32_t found = UINT32_MAX;
-      grid.around(p, [&](std::uint32_t id) {
-        if (id < found && length(m.vertices[id] - p) <= tol) found = id;
-      });
-      if (found == UINT32_MAX) {
-        found = static_cast<std::uint32_t>(m.vertices.size());
-        m.vertices.push_back(p);
-        grid.insert(p, found);
+    for (std::uint32_t c = loops.start[f]; c < loops.start[f + 1]; ++c) {
+      const std::uint32_t root = find(c);
+      if (vertex_of[root] == UINT32_MAX) {
+        vertex_of[root] = static_cast<std::uint32_t>(m.vertices.size());
+        m.vertices.push_back(pts[root]);
       }
-      if (face.empty() || face.back() != found) face.push_back(found);
+      const std::uint32_t v = vertex_of[root];
+      if (face.empty() || face.back() != v) face.push_back(v);
     }
     while (face.size() > 1 && face.back() == face.front()) face.pop_back();
     if (face.size() < 3) {

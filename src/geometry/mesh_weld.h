@@ -17,9 +17,10 @@ struct IndexedMesh {
   std::size_t face_count() const { return start.size() - 1; }
 };
 
-// Vertices within tol of an earlier vertex become that vertex (first come, first kept, so the
-// result is deterministic); a face that repeats a vertex in a row keeps it once, and a face left
-// with fewer than 3 corners is dropped and counted.
+// Corners within tol of each other become one vertex, transitively (a chain of corners each within
+// tol of the next is one vertex, placed at its first corner, so the result is deterministic); a
+// face that repeats a vertex in a row keeps it once, and a face left with fewer than 3 corners is
+// dropped and counted.
 struct WeldResult {
   IndexedMesh mesh;
   std::uint64_t dropped_faces = 0;
