@@ -25,13 +25,18 @@ void split_loop(std::span<const Vec3> loop, const Plane& plane, double eps, std:
     if (da >= -eps) front.push_back(a);
     if (da <= eps) back.push_back(a);
     if ((da > eps && db < -eps) || (da < -eps && db > eps)) {
-      const Vec3 x = a + (b - a) * (da / (da - db));
+      const Vec3 x = edge_cut(a, b, da, db);
       front.push_back(x);
       back.push_back(x);
     }
   }
   if (front.size() < 3) front.clear();
   if (back.size() < 3) back.clear();
+}
+
+Vec3 edge_cut(const Vec3& a, const Vec3& b, double da, double db) {
+  const bool a_first = a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
+  return a_first ? a + (b - a) * (da / (da - db)) : b + (a - b) * (db / (db - da));
 }
 
 std::vector<Vec3> plane_in_box(const Plane& plane, const Box& box) {

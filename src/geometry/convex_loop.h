@@ -32,6 +32,11 @@ struct LoopPool {
 void split_loop(std::span<const Vec3> loop, const Plane& plane, double eps, std::vector<Vec3>& front,
                 std::vector<Vec3>& back);
 
+// Where edge ab crosses a plane, given the ends' distances da and db of opposite signs, computed
+// from the lexicographically smaller end: the two faces that share an edge cut it at the same
+// point, bit for bit.
+Vec3 edge_cut(const Vec3& a, const Vec3& b, double da, double db);
+
 // The part of the plane inside the box, counter-clockwise about the plane's normal (its Newell
 // normal points along n). Empty when the plane misses the box.
 std::vector<Vec3> plane_in_box(const Plane& plane, const Box& box);

@@ -22,6 +22,11 @@ Cell box_cell(const Box& box) {
 namespace {
 
 void add_cap(Cell& cell, std::vector<Vec3>& cut, const Plane& outward, Ref node) {
+  // Each cut point comes once from each face through it, bit for bit (edge_cut): keep one.
+  std::sort(cut.begin(), cut.end(), [](const Vec3& a, const Vec3& b) {
+    return a.x < b.x || (a.x == b.x && (a.y < b.y || (a.y == b.y && a.z < b.z)));
+  });
+  cut.erase(std::unique(cut.begin(), cut.end()), cut.end());
   if (cut.size() < 3) return;
   Vec3 c;
   for (const Vec3& p : cut) c += p;
@@ -65,7 +70,7 @@ void split_cell(const Cell& cell, const Plane& plane, Ref node, Cell& front, Cel
       const Vec3& q = loop[k + 1 == loop.size() ? 0 : k + 1];
       const double dp = plane.distance(p), dq = plane.distance(q);
       if (dp == 0) cut.push_back(p);
-      if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) cut.push_back(p + (q - p) * (dp / (dp - dq)));
+      if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) cut.push_back(edge_cut(p, q, dp, dq));
     }
   }
   std::vector<Vec3> cap = cut;
