@@ -4,53 +4,10 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "geometry/point_grid.h"
 #include "geometry/polygon.h"
 
 namespace bsp {
-
-namespace {
-
-// Points hashed by the integer cell of a cubic grid.
-struct CellKey {
-  std::int64_t x, y, z;
-  bool operator==(const CellKey&) const = default;
-};
-struct CellHash {
-  std::size_t operator()(const CellKey& k) const {
-    std::uint64_t h = 1469598103934665603ULL;
-    for (std::int64_t c : {k.x, k.y, k.z}) h = (h ^ static_cast<std::uint64_t>(c)) * 1099511628211ULL;
-    return h;
-  }
-};
-
-class PointGrid {
- public:
-  explicit PointGrid(double cell) : cell_(cell) {}
-  CellKey key(const Vec3& p) const {
-    return {static_cast<std::int64_t>(std::floor(p.x / cell_)), static_cast<std::int64_t>(std::floor(p.y / cell_)),
-            static_cast<std::int64_t>(std::floor(p.z / cell_))};
-  }
-  void insert(const Vec3& p, std::uint32_t id) { cells_[key(p)].push_back(id); }
-  // Calls f(id) for every point in the 27 cells around p's cell.
-  template <class F>
-  void around(const Vec3& p, F f) const {
-    const CellKey k = key(p);
-    for (std::int64_t dx = -1; dx <= 1; ++dx)
-      for (std::int64_t dy = -1; dy <= 1; ++dy)
-        for (std::int64_t dz = -1; dz <= 1; ++dz) {
-          const auto it = cells_.find({k.x + dx, k.y + dy, k.z + dz});
-          if (it == cells_.end()) continue;
-          for (std::uint32_t id : it->second) f(id);
-        }
-  }
-  double cell() const { return cell_; }
-
- private:
-  double cell_;
-  std::unordered_map<CellKey, std::vector<std::uint32_t>, CellHash> cells_;
-};
-
-}  // namespace
 
 WeldResult weld_loops(const LoopPool& loops, double tol) {
   // Union-find over all corners: two corners within tol are one vertex, and so, transitively, is

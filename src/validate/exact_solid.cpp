@@ -6,18 +6,17 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
 
 #include <cmath>
 #include <iterator>
-#include <map>
 #include <stdexcept>
 #include <string>
-#include <tuple>
 #include <vector>
+
+#include "validate/cgal_mesh.h"
 
 namespace bsp {
 
@@ -29,23 +28,6 @@ using Mesh = CGAL::Surface_mesh<Point>;
 using Primitive = CGAL::AABB_face_graph_triangle_primitive<Mesh>;
 using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 namespace PMP = CGAL::Polygon_mesh_processing;
-
-Mesh mesh_of(std::span<const Polygon> polys) {
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> faces;
-  std::map<std::tuple<double, double, double>, std::size_t> index;
-  const auto id = [&](const Vec3& p) {
-    const auto [it, fresh] = index.try_emplace({p.x, p.y, p.z}, points.size());
-    if (fresh) points.emplace_back(p.x, p.y, p.z);
-    return it->second;
-  };
-  for (const Polygon& poly : polys)
-    for (std::size_t i = 1; i + 1 < poly.verts.size(); ++i)
-      faces.push_back({id(poly.verts[0].p), id(poly.verts[i].p), id(poly.verts[i + 1].p)});
-  Mesh mesh;
-  PMP::polygon_soup_to_polygon_mesh(points, faces, mesh);
-  return mesh;
-}
 
 }  // namespace
 
@@ -61,7 +43,7 @@ struct ExactSolid::Impl {
   }
 };
 
-ExactSolid::ExactSolid(std::span<const Polygon> polys) : impl_(std::make_unique<Impl>(mesh_of(polys))) {}
+ExactSolid::ExactSolid(std::span<const Polygon> polys) : impl_(std::make_unique<Impl>(cgal_mesh_of<Point>(polys))) {}
 ExactSolid::ExactSolid(const ExactSolid& other) : impl_(std::make_unique<Impl>(other.impl_->mesh)) {}
 ExactSolid::~ExactSolid() = default;
 
