@@ -1,14 +1,11 @@
 #include "solid/solid_tree.h"
 
 #include <algorithm>
-#include <cmath>
 #include <string>
 #include <utility>
 
 #include "common/errors.h"
 #include "geometry/convex_loop.h"
-#include "geometry/polygon.h"
-#include "geometry/polytope.h"
 #include "solid/cells.h"
 
 namespace bsp {

@@ -7,9 +7,9 @@
 // convex polygon. A child link is a Ref: a node index (>= 0), or a leaf kOut / kIn.
 //
 // Invariants: every node's front is the side its plane's normal points to; shp(v) is clipped to
-// the box and to every ancestor's half-space towards v (within tol.plane_eps); a node whose
-// shp is empty separates nothing inside the box (it survives only as a tolerance artefact of
-// merging, and reduce() removes it).
+// the box and to every ancestor's half-space towards v, cut by the sign of each vertex's distance
+// (tol.plane_eps only decides coplanarity); a node whose shp is empty separates nothing inside the
+// box (it survives only as a tolerance artefact of merging, and reduce() removes it).
 #include <cstdint>
 #include <span>
 #include <vector>
