@@ -12,6 +12,12 @@ plots it links:
     each heuristic's fitted growth exponent in the legend.
 Then a table of every metric and timing: mean and 95% interval over seeds, per heuristic and size.
 
+Merge runs (set operations on solid pairs) get their own section: per pair, merge CPU time against
+the operands' size for every heuristic and operation (merge-PAIR.png), the result's size before and
+after reduction at the largest size (sizes-PAIR.png), a table of merge cost per heuristic and
+operation, and a verdict per pair and operation: which heuristic's trees merge fastest, whether its
+interval over seeds separates it from the runner-up, and where Naylor's expected-cost trees rank.
+
 Needs matplotlib (Debian: python3-matplotlib; call /usr/bin/python3, a pyenv python3 may lack it).
 Exit status: 0 written, 2 bad input (unreadable file, not a bspbench report, other version).
 """
@@ -28,7 +34,7 @@ matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 
 SCHEMA = "bspbench-report"
-VERSION = 2
+VERSION = 3
 # The three axes of the Pareto view, all "lower is better": fragments vs depth vs E_line.
 PARETO_AXES = ("fragments", "max_depth", "e_line")
 SCALING_AXES = (("timings", "build_cpu_seconds", "build CPU time (s)"), ("metrics", "fragments", "fragments"))
@@ -66,11 +72,16 @@ def slug(text):
     return re.sub(r"[^A-Za-z0-9_.-]+", "_", text)
 
 
+def is_merge(agg):
+    return agg.get("kind") == "merge"
+
+
 def by_scene(report):
-    """Scene -> its aggregates, each given a "label" that tells it from the others of the scene."""
+    """Scene -> its drawing aggregates, each given a "label" that tells it from the others of the scene."""
     scenes = {}
     for agg in report["aggregates"]:
-        scenes.setdefault(agg["scene"], []).append(agg)
+        if not is_merge(agg):
+            scenes.setdefault(agg["scene"], []).append(agg)
     for aggs in scenes.values():
         vary = len({json.dumps(a.get("scene_params"), sort_keys=True) for a in aggs}) > 1
         for a in aggs:
@@ -226,6 +237,141 @@ def scene_section(scene, aggs, out_dir):
             f"<h3>Growth</h3>{growth_table(aggs)}<h3>Every metric</h3>{metric_table(aggs)}")
 
 
+OPERATIONS = ("union", "intersection", "difference", "xor")
+# The merge cost columns, with what each counts.
+MERGE_COLUMNS = (
+    ("metrics", "a_nodes", "nodes of the first operand's solid tree"),
+    ("metrics", "a_depth", "its depth"),
+    ("metrics", "partition_calls", "partitionTree calls"),
+    ("metrics", "partition_nodes", "nodes of the second tree visited while partitioning"),
+    ("metrics", "shp_splits", "sub-hyperplanes cut in two"),
+    ("metrics", "before_nodes", "result nodes as merged"),
+    ("metrics", "after_nodes", "result nodes after reduction"),
+    ("metrics", "after_depth", "result depth after reduction"),
+    ("timings", "merge_cpu_seconds", "merge and reduce, thread CPU seconds (median of the timed batches)"),
+    ("timings", "build_a_cpu_seconds", "first operand's solid tree, thread CPU seconds"),
+    ("timings", "corefine_seconds", "CGAL corefinement of the same operands, wall seconds (the reference)"),
+)
+
+
+def by_pair(report):
+    """Pair -> operation -> its merge aggregates (one per heuristic), in the order of OPERATIONS."""
+    pairs = {}
+    for agg in report["aggregates"]:
+        if is_merge(agg):
+            pairs.setdefault(agg["scene"], {}).setdefault(agg["operation"], []).append(agg)
+    return {p: {op: ops[op] for op in OPERATIONS if op in ops} for p, ops in sorted(pairs.items())}
+
+
+def ci_half(summary):
+    ci = summary.get("ci95") if summary else None
+    return 0.0 if ci is None else (ci[1] - ci[0]) / 2
+
+
+def plot_merge_time(pair, ops, path):
+    fig, axes = plt.subplots(1, len(ops), figsize=(4.2 * len(ops), 4.2), squeeze=False)
+    for ax, (op, aggs) in zip(axes[0], ops.items()):
+        for agg in sorted(aggs, key=lambda a: a["heuristic"]):
+            pts = [(e["n"], e["timings"].get("merge_cpu_seconds")) for e in agg["by_n"]]
+            pts = [(x, y) for x, y in pts if y is not None and x > 0 and y["mean"] > 0]
+            if pts:
+                ax.errorbar([x for x, _ in pts], [y["mean"] for _, y in pts], yerr=[ci_half(y) for _, y in pts],
+                            marker="o", capsize=2, label=agg["heuristic"])
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("polygons per operand (n)")
+        ax.set_ylabel("merge CPU time (s)")
+        ax.set_title(f"{pair}: {op}", fontsize=9)
+        ax.grid(True, which="both", alpha=0.3)
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 9), fontsize=8)
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def plot_merge_sizes(pair, ops, path):
+    fig, axes = plt.subplots(1, len(ops), figsize=(4.2 * len(ops), 4.2), squeeze=False)
+    for ax, (op, aggs) in zip(axes[0], ops.items()):
+        aggs = sorted(aggs, key=lambda a: a["heuristic"])
+        names = [a["heuristic"] for a in aggs]
+        largest = [a["by_n"][-1] for a in aggs]
+        xs = range(len(aggs))
+        for offset, field, colour in ((-0.2, "before_nodes", "#bbb"), (0.2, "after_nodes", "#369")):
+            vals = [e["metrics"][field] for e in largest]
+            ax.bar([x + offset for x in xs], [v["mean"] for v in vals], width=0.4, yerr=[ci_half(v) for v in vals],
+                   color=colour, label=field.replace("_", " "))
+        ax.set_xticks(list(xs))
+        ax.set_xticklabels(names, rotation=45, ha="right", fontsize=8)
+        ax.set_yscale("log")
+        ax.set_ylabel("result nodes")
+        ax.set_title(f"{pair}: {op}, n = {largest[0]['n'] if largest else '?'}", fontsize=9)
+        ax.grid(True, axis="y", which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def merge_verdict(op, aggs):
+    """One row: the heuristic whose trees merge fastest at the largest size, its separation from the
+    runner-up (disjoint 95% intervals over seeds), and naylor's rank."""
+    n = max(a["by_n"][-1]["n"] for a in aggs)
+    at_n = [(a["heuristic"], e) for a in aggs for e in a["by_n"] if e["n"] == n]
+    ranked = sorted(at_n, key=lambda he: he[1]["timings"]["merge_cpu_seconds"]["mean"])
+    (best, b), (second, s) = ranked[0], ranked[1] if len(ranked) > 1 else ranked[0]
+    bt, st = b["timings"]["merge_cpu_seconds"], s["timings"]["merge_cpu_seconds"]
+    b_hi = bt["ci95"][1] if bt.get("ci95") else bt["mean"]
+    s_lo = st["ci95"][0] if st.get("ci95") else st["mean"]
+    separated = "yes" if b_hi < s_lo else "no (intervals overlap)"
+    names = [h for h, _ in ranked]
+    naylor = f"{names.index('naylor') + 1} of {len(names)}" if "naylor" in names else "not run"
+    smallest = min(at_n, key=lambda he: he[1]["metrics"]["after_nodes"]["mean"])[0]
+    return (f"<tr><td>{html.escape(op)}</td><td>{n}</td><td>{html.escape(best)}</td><td>{cell(bt)}</td>"
+            f"<td>{html.escape(second)}</td><td>{cell(st)}</td><td>{separated}</td><td>{naylor}</td>"
+            f"<td>{html.escape(smallest)}</td></tr>")
+
+
+def merge_table(ops):
+    head = "".join(f"<th title='{html.escape(doc)}'>{html.escape(k)}</th>" for _, k, doc in MERGE_COLUMNS)
+    rows = []
+    for op, aggs in ops.items():
+        for g in sorted(aggs, key=lambda a: a["heuristic"]):
+            for e in g["by_n"]:
+                cells = "".join(f"<td>{cell(e[s].get(k))}</td>" for s, k, _ in MERGE_COLUMNS)
+                rows.append(f"<tr><td>{html.escape(op)}</td><td>{html.escape(g['heuristic'])}</td><td>{e['n']}</td>"
+                            f"<td>{e['runs']}</td><td>{e['validation_violations']}</td>{cells}</tr>")
+    return ("<div class=scroll><table><tr><th>operation</th><th>heuristic</th><th>n</th><th>runs</th>"
+            "<th>proof violations</th>" + head + "</tr>" + "".join(rows) + "</table></div>")
+
+
+def merge_section(report, out_dir):
+    pairs = by_pair(report)
+    if not pairs:
+        return "", ""
+    parts = ["<h2 id='merges'>Set operations: merge cost by heuristic</h2>"
+             "<p>Each run builds both operands of a solid pair as solid trees with one heuristic, merges them "
+             "(Naylor, Amanatides and Thibault 1990), and proves the result against CGAL (point membership, "
+             "volume against corefinement, closed boundary). The verdict asks which heuristic's trees merge "
+             "fastest at the largest size, whether the 95% intervals over seeds separate it from the runner-up, "
+             "and where Naylor's expected-cost trees rank. Column headers explain themselves on hover.</p>"]
+    for pair, ops in pairs.items():
+        time_png, sizes_png = f"merge-{slug(pair)}.png", f"sizes-{slug(pair)}.png"
+        plot_merge_time(pair, ops, os.path.join(out_dir, time_png))
+        plot_merge_sizes(pair, ops, os.path.join(out_dir, sizes_png))
+        verdicts = "".join(merge_verdict(op, aggs) for op, aggs in ops.items())
+        parts.append(
+            f"<h3 id='merge-{slug(pair)}'>{html.escape(pair)}</h3>"
+            "<table><tr><th>operation</th><th>n</th><th>fastest merge</th><th>merge CPU s</th><th>runner-up</th>"
+            "<th>merge CPU s</th><th>separated</th><th>naylor's rank</th><th>smallest result</th></tr>"
+            f"{verdicts}</table>"
+            f"<img src='{time_png}' alt='merge time against n for {html.escape(pair)}'>"
+            f"<img src='{sizes_png}' alt='result size before and after reduction for {html.escape(pair)}'>"
+            f"<h4>Merge cost</h4>{merge_table(ops)}")
+    return "<li><a href='#merges'>set operations</a></li>", "".join(parts)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--in", dest="input", required=True)
@@ -239,6 +385,9 @@ def main():
     scenes = by_scene(report)
     toc = "".join(f"<li><a href='#{slug(s)}'>{html.escape(s)}</a></li>" for s in scenes)
     body = "".join(scene_section(s, aggs, args.out) for s, aggs in scenes.items())
+    merge_toc, merge_body = merge_section(report, args.out)
+    toc += merge_toc
+    body += merge_body
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>bspbench report</title>{STYLE}</head>"
             f"<body>{header(report)}<ul>{toc}</ul>{body}</body></html>\n")
     tmp = os.path.join(args.out, "index.html.tmp")

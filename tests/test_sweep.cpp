@@ -1,10 +1,12 @@
-// The sweep engine: suites take every registered heuristic and generator; the journal survives
+// The sweep engine: suites take every registered heuristic and generator, and merge blocks every
+// pair, size, heuristic, operation and seed; merge runs carry their cost and their proof; the journal survives
 // interruptions (torn last line, resume without rerunning); deterministic fields do not depend on
 // the thread count; shards partition a suite and merge back, rejecting duplicate, missing and
 // foreign shards; aggregates recover a known power law; the declared timing fields alone decide what
 // is a timing; the regression gate passes an identical report and fails a changed fragment count, a
 // missing run, a violation, a ray-shooting mismatch and a group of build times significantly 1.6x
-// slower, while 1.4x slower, faster, one outlier and a uniformly slower machine pass.
+// slower, while 1.4x slower, faster, one outlier and a uniformly slower machine pass; on merge runs
+// it fails a changed merge cost, a failed proof and a slower group of merges.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -17,6 +19,7 @@
 
 #include "catalog.h"
 #include "common/errors.h"
+#include "solid_pairs.h"
 #include "split/registry.h"
 #include "sweep/aggregate.h"
 #include "sweep/bench_gate.h"
@@ -72,6 +75,38 @@ const nlohmann::json& tiny_report() {
   return report;
 }
 
+// 8 merge jobs: two spheres of 48 triangles each, two heuristics, two operations, two seeds.
+Suite tiny_merge_suite() {
+  return {"tiny-merge", "test suite", {},
+          {{{"spheres"}, {"first", "naylor"}, {SetOp::Union, SetOp::Difference}, {50}, {1, 2}, 1000}}};
+}
+
+const nlohmann::json& tiny_merge_report() {
+  static const nlohmann::json report = [] {
+    const fs::path dir = fs::temp_directory_path() / ("bspbench_sweep_tiny_merge_" + std::to_string(::getpid()));
+    nlohmann::json r = run_tiny(tiny_merge_suite(), dir, 2);
+    fs::remove_all(dir);
+    return r;
+  }();
+  return report;
+}
+
+// Gives every run the same calibration and five samples of `field` with a known spread around
+// `time` (a job's own scale), times `factor` for the runs of `heuristic` (every run when empty).
+void set_samples(nlohmann::json& report, const std::string& field, double factor, const std::string& heuristic = "",
+                 double calibration = 0.1) {
+  constexpr double kSpread[] = {0.98, 0.99, 1.0, 1.01, 1.02};
+  double time = 1e-3;
+  for (auto& run : report["runs"]) {
+    time *= 1.7;  // jobs of different sizes
+    const double f = heuristic.empty() || run["id"]["heuristic"] == heuristic ? factor : 1.0;
+    nlohmann::json samples = nlohmann::json::array();
+    for (double s : kSpread) samples.push_back(time * s * f * calibration / 0.1);
+    run["timings"][field] = samples;
+    run["calibration_seconds"] = calibration;
+  }
+}
+
 std::vector<std::string> lines_of(const fs::path& p) {
   std::ifstream in(p);
   std::vector<std::string> out;
@@ -91,16 +126,44 @@ TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
   for (const auto& suite : suites()) {
     SCOPED_TRACE(suite.name);
     const auto jobs = expand(suite);
-    std::set<std::string> keys, scenes, heuristics_seen;
+    std::set<std::string> keys, scenes, heuristics_seen, merge_heuristics;
     for (const auto& j : jobs) {
       keys.insert(j.key);
+      if (j.op) {
+        merge_heuristics.insert(j.heuristic);
+        continue;
+      }
       scenes.insert(j.scene);
       if (!j.incremental) heuristics_seen.insert(parse_heuristic_variant(j.heuristic).name);
     }
     EXPECT_EQ(keys.size(), jobs.size());
-    EXPECT_EQ(scenes.size(), drawn_scene_count());
-    EXPECT_EQ(heuristics_seen.size(), heuristics().size());
+    if (!suite.blocks.empty()) {
+      EXPECT_EQ(scenes.size(), drawn_scene_count());
+      EXPECT_EQ(heuristics_seen.size(), heuristics().size());
+    }
+    if (!suite.merges.empty()) EXPECT_EQ(merge_heuristics.size(), heuristics().size());
   }
+}
+
+// A merge block runs every pair x size x heuristic x operation x seed, a size outside a pair's
+// range is skipped, and a pair without sizes (the sponges: their level sets the count) runs once.
+TEST(SweepSuites, MergeBlocksExpandToPairSizeHeuristicOperationAndSeed) {
+  const Suite suite{"merges", "test", {}, {{{"spheres", "sponges"}, {"first", "naylor"}, {}, {50, 1'000'000'000'000}, {1, 2}, 100}}};
+  const auto jobs = expand(suite);
+  EXPECT_EQ(jobs.size(), (1 + 1) * 2u * 4 * 2);
+  std::set<std::string> keys;
+  for (const auto& j : jobs) {
+    keys.insert(j.key);
+    ASSERT_TRUE(j.op.has_value());
+    EXPECT_EQ(j.n, j.scene == "spheres" ? 50u : 0u);
+    const nlohmann::json id = job_identity(j);
+    EXPECT_EQ(id["kind"], "merge");
+    EXPECT_EQ(id["operands"].size(), 2u);
+    // The second operand is drawn and rotated with its own seed.
+    EXPECT_EQ(id["operands"][1]["params"]["seed"], j.seed + kSecondSeedOffset);
+    EXPECT_NE(id["command"].get<std::string>().find(" --op " + std::string(set_op_name(*j.op))), std::string::npos);
+  }
+  EXPECT_EQ(keys.size(), jobs.size());
 }
 
 // The scorers whose sources score every plane run that way too, beside their sampled defaults, in
@@ -135,7 +198,8 @@ TEST(SweepSuites, SizesThatMakeTheSameSceneRunOnce) {
 // catalog says which, and every run's identity carries it to the report.
 TEST(SweepSuites, RunsSayWhetherTheirSceneKeepsItsDensity) {
   std::map<std::string, bool> density;
-  for (const auto& j : expand(find_suite("smoke"))) density[j.scene] = job_identity(j)["constant_density"];
+  for (const auto& j : expand(find_suite("smoke")))
+    if (!j.op) density[j.scene] = job_identity(j)["constant_density"];
   for (const char* grows : {"random-triangles", "saddle-grid", "orthogonal-stacks", "coplanar-heavy"})
     EXPECT_FALSE(density.at(grows)) << grows;
   for (const char* constant : {"random-disjoint", "sphere-field", "architecture", "city", "terrain"})
@@ -197,6 +261,39 @@ TEST(SweepRecord, RunRecordHoldsBuildSamplesAndTheRayShootingCheck) {
   EXPECT_GT(run["ray_shooting"]["rays"].get<std::uint64_t>(), 0u);
   EXPECT_EQ(run["ray_shooting"]["mismatches"], 0);
   for (const auto& [k, v] : run["timings"].items()) EXPECT_NE(find_timing_field(k), nullptr) << k;
+}
+
+// A merge run: the operands' trees and the merge cost as metrics, the boundary's closure as
+// invariants, the proof against CGAL as validation (every point accounted for), merge samples timed
+// as builds are, and every timing declared.
+TEST(SweepRecord, MergeRunHoldsItsCostItsProofAndMergeSamples) {
+  const nlohmann::json& report = tiny_merge_report();
+  ASSERT_EQ(report["runs"].size(), 8u);
+  EXPECT_EQ(report["failures"].size(), 0u);
+  for (const auto& run : report["runs"]) {
+    const auto& id = run["id"];
+    SCOPED_TRACE(id["command"].get<std::string>());
+    EXPECT_EQ(id["n_polygons"], id["operands"][0]["n_polygons"].get<std::uint64_t>() +
+                                    id["operands"][1]["n_polygons"].get<std::uint64_t>());
+    const auto& m = run["metrics"];
+    EXPECT_GT(m["partition_calls"].get<std::uint64_t>(), 0u);
+    EXPECT_LE(m["after_nodes"].get<std::uint64_t>(), m["before_nodes"].get<std::uint64_t>());
+    EXPECT_GT(m["result_volume"].get<double>(), 0.0);
+    const auto& v = run["validation"];
+    EXPECT_EQ(v["violations"], 0);
+    EXPECT_EQ(v["points"], 1000);
+    EXPECT_EQ(v["compared"].get<std::uint64_t>() + v["on_operand_surface"].get<std::uint64_t>() +
+                  v["within_plane_eps"].get<std::uint64_t>(),
+              1000u);
+    EXPECT_EQ(run["invariants"]["violations"], 0);
+    EXPECT_EQ(run["invariants"]["border_edges"], 0);
+    EXPECT_EQ(run["timings"]["merge_cpu_samples"].size(), static_cast<std::size_t>(kBuildSamples));
+    for (const auto& [k, value] : run["timings"].items()) EXPECT_NE(find_timing_field(k), nullptr) << k;
+  }
+  // Aggregates group merges by pair, heuristic and operation.
+  EXPECT_EQ(report["aggregates"].size(), 4u);
+  EXPECT_EQ(report["aggregates"][0]["kind"], "merge");
+  EXPECT_TRUE(report["aggregates"][0].contains("operation"));
 }
 
 TEST(SweepShards, PartitionTheSuiteDeterministically) {
@@ -287,6 +384,7 @@ TEST(SweepRunner, DeterministicFieldsDoNotDependOnTheThreadCount) {
   EXPECT_TRUE(one["summary"]["complete"].get<bool>());
   EXPECT_EQ(deterministic_view(one), deterministic_view(two));
   EXPECT_NE(one["runs"][0]["timings"], nullptr);
+  EXPECT_EQ(deterministic_view(run_tiny(tiny_merge_suite(), dir / "m1", 1)), deterministic_view(tiny_merge_report()));
   fs::remove_all(dir);
 }
 
@@ -336,20 +434,9 @@ class RegressGate : public ::testing::Test {
   nlohmann::json baseline = tiny_report();
   nlohmann::json current = tiny_report();
 
-  // Gives every run the same calibration and five build samples of a known spread around `time`
-  // (a job's own scale), times `factor` for the runs of `heuristic` (every run when empty).
   static void set_build_samples(nlohmann::json& report, double factor, const std::string& heuristic = "",
                                 double calibration = 0.1) {
-    constexpr double kSpread[] = {0.98, 0.99, 1.0, 1.01, 1.02};
-    double time = 1e-3;
-    for (auto& run : report["runs"]) {
-      time *= 1.7;  // jobs of different sizes
-      const double f = heuristic.empty() || run["id"]["heuristic"] == heuristic ? factor : 1.0;
-      nlohmann::json samples = nlohmann::json::array();
-      for (double s : kSpread) samples.push_back(time * s * f * calibration / 0.1);
-      run["timings"]["build_cpu_samples"] = samples;
-      run["calibration_seconds"] = calibration;
-    }
+    set_samples(report, "build_cpu_samples", factor, heuristic, calibration);
   }
   void SetUp() override {
     set_build_samples(baseline, 1.0);
@@ -447,6 +534,40 @@ TEST_F(RegressGate, MissingRunViolationsAndRayShootingMismatchesFailButANewRunDo
   baseline = tiny_report();
   baseline["runs"].erase(baseline["runs"].begin() + 2);
   EXPECT_FALSE(fails());
+}
+
+// The gate on merge runs: results compared exactly like a drawing run's, a failed proof fails, and
+// merge samples are judged per pair x heuristic x operation.
+TEST(RegressGateMerges, ChangedMergeCostOrAFailedProofFailsAndSlowerMergesFailTheirGroups) {
+  nlohmann::json baseline = tiny_merge_report(), current = tiny_merge_report();
+  set_samples(baseline, "merge_cpu_samples", 1.0);
+  set_samples(current, "merge_cpu_samples", 1.0);
+  RegressResult r = compare_reports(baseline, current, {});
+  EXPECT_FALSE(r.failed());
+  EXPECT_EQ(r.timing_groups, 4u);  // 2 heuristics x 2 operations, each pooling 2 seeds
+
+  nlohmann::json changed = current;
+  auto& calls = changed["runs"][3]["metrics"]["partition_calls"];
+  calls = calls.get<std::uint64_t>() + 1;
+  r = compare_reports(baseline, changed, {});
+  ASSERT_TRUE(r.failed());
+  ASSERT_EQ(r.changes.size(), 1u);
+  EXPECT_EQ(r.changes[0].field, "metrics.partition_calls");
+
+  nlohmann::json unproved = current, unproved_base = baseline;
+  unproved["runs"][2]["validation"]["violations"] = 1;
+  unproved_base["runs"][2]["validation"]["violations"] = 1;
+  EXPECT_TRUE(compare_reports(unproved_base, unproved, {}).failed());
+
+  set_samples(current, "merge_cpu_samples", 1.6, "naylor");
+  r = compare_reports(baseline, current, {});
+  ASSERT_TRUE(r.failed());
+  ASSERT_EQ(r.changes.size(), 2u);  // naylor's union and difference groups
+  for (const auto& c : r.changes) {
+    EXPECT_EQ(c.what, "slower");
+    EXPECT_EQ(c.field, "timings.merge_cpu_samples");
+    EXPECT_EQ(c.run.rfind("spheres naylor ", 0), 0u) << c.run;
+  }
 }
 
 TEST(SweepReport, ReadingRejectsOtherSchemasVersionsAndDamagedRecords) {

@@ -1,13 +1,15 @@
 // The sweep commands of the real bspbench binary: a suite run as three shards under GNU parallel
 // merges to the unsharded report in every deterministic field, and bad shard sets are rejected;
-// `report` renders every plot it links as a valid PNG; `regress` exits 0 on an identical report, 1
-// on a changed result and 2 on bad input, and catches a planted slowdown of one heuristic.
+// `report` renders every plot it links as a valid PNG, merges' included; a merge run's command
+// repeats it; `regress` exits 0 on an identical report, 1 on a changed result and 2 on bad input,
+// and catches a planted slowdown of one heuristic's builds and merges.
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -43,11 +45,13 @@ class SweepCli : public ::testing::Test {
   }
   int bspbench(const std::string& args) { return shell(std::string(BSPBENCH_EXE) + " " + args); }
 
-  // A small report made through the library: two scenes, two heuristics, two sizes, two seeds.
+  // A small report made through the library: two scenes, two heuristics, two sizes, two seeds; and
+  // merges of one solid pair, two heuristics, two operations, two sizes, two seeds.
   fs::path small_report() {
     const Suite suite{"tiny", "test suite",
                       {{{"random-triangles", "random-disjoint"}, {"first", "random"}, {40, 80}, {}, {1, 2},
-                        {bsp::Shape::Strict}, {1, 0, 1}}}};
+                        {bsp::Shape::Strict}, {1, 0, 1}}},
+                      {{{"spheres"}, {"first", "naylor"}, {bsp::SetOp::Union, bsp::SetOp::Difference}, {50, 100}, {1, 2}, 500}}};
     SweepOptions o;
     o.journal_dir = (dir_ / "journal").string();
     const fs::path path = dir_ / "small.json";
@@ -106,12 +110,36 @@ TEST_F(SweepCli, ReportRendersEveryLinkedPlotAsAValidPng) {
     const fs::path png = dir_ / "html" / (*it)[1].str();
     EXPECT_TRUE(fs::exists(png) && fs::file_size(png) > 0 && is_png(png)) << png;
   }
-  EXPECT_EQ(images, 4u);  // a Pareto view and a scaling plot for each of the two scenes
+  // A Pareto view and a scaling plot for each of the two scenes, merge time and result sizes for the pair.
+  EXPECT_EQ(images, 6u);
+  EXPECT_NE(page.find("Set operations: merge cost by heuristic"), std::string::npos);
+  EXPECT_NE(page.find("naylor's rank"), std::string::npos);
   // A corrupted image is caught by the check above.
   std::ofstream(dir_ / "fake.png") << "\x89PNG\r\n\x1a\nnot really";
   EXPECT_FALSE(is_png(dir_ / "fake.png"));
   std::ofstream(dir_ / "bad.json") << "[1, 2]";
   EXPECT_EQ(bspbench("report --in bad.json --out html2"), 2);
+}
+
+// A merge run's command repeats the run: `bspbench merge` with it reports the same merge cost,
+// result size and volume as the sweep recorded.
+TEST_F(SweepCli, MergeRunCommandRepeatsTheRun) {
+  const auto report = read_report(small_report().string());
+  std::size_t checked = 0;
+  for (const auto& run : report["runs"]) {
+    if (run["id"].value("kind", "") != "merge" || run["id"]["n"] != 100 || run["id"]["seed"] != 2) continue;
+    const std::string command = run["id"]["command"];
+    ASSERT_EQ(command.rfind("bspbench merge ", 0), 0u) << command;
+    ASSERT_EQ(bspbench(command.substr(9) + " --json"), 0) << command << "\n" << err_;
+    const auto out = nlohmann::json::parse(out_);
+    EXPECT_EQ(out["merge"]["partition_calls"], run["metrics"]["partition_calls"]) << command;
+    EXPECT_EQ(out["merge"]["after"]["nodes"], run["metrics"]["after_nodes"]) << command;
+    EXPECT_EQ(out["merge"]["before"]["nodes"], run["metrics"]["before_nodes"]) << command;
+    EXPECT_EQ(out["check"]["tree_volume"], run["metrics"]["result_volume"]) << command;
+    EXPECT_EQ(out["check"]["mismatches"], run["validation"]["mismatches"]) << command;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4u);  // 2 heuristics x 2 operations
 }
 
 TEST_F(SweepCli, RegressExitsZeroOnIdenticalOneOnChangedAndTwoOnBadInput) {
@@ -120,7 +148,10 @@ TEST_F(SweepCli, RegressExitsZeroOnIdenticalOneOnChangedAndTwoOnBadInput) {
   EXPECT_NE(out_.find("no regression"), std::string::npos) << out_;
 
   nlohmann::json changed = read_report(base.string());
-  auto& fragments = changed["runs"][0]["metrics"]["fragments"];
+  auto drawn = std::find_if(changed["runs"].begin(), changed["runs"].end(),
+                           [](const nlohmann::json& r) { return r["id"]["kind"] == "draw"; });
+  ASSERT_NE(drawn, changed["runs"].end());
+  auto& fragments = (*drawn)["metrics"]["fragments"];
   fragments = fragments.get<std::uint64_t>() + 1;
   write_report((dir_ / "changed.json").string(), changed);
   EXPECT_EQ(bspbench("regress --baseline " + base.string() + " --current changed.json"), 1);
@@ -145,20 +176,25 @@ TEST_F(SweepCli, PlantedSlowdownOfOneHeuristicFailsExactlyItsGroups) {
   const auto planted = read_report((dir_ / "planted.json").string());
   EXPECT_EQ(planted["shards"][0]["planted_slowdown"]["heuristic"], "naylor");
   EXPECT_EQ(bspbench("regress --baseline base.json --current planted.json"), 1) << out_;
-  std::set<std::string> failed_scenes;
+  // Drawing groups are scene x heuristic x shape, merge groups pair x heuristic x operation.
+  std::set<std::string> failed_groups;
   std::istringstream lines(out_);
   for (std::string line; std::getline(lines, line);) {
-    if (line.find("timings.build_cpu_samples") == std::string::npos) continue;
+    const bool merge = line.find("timings.merge_cpu_samples") != std::string::npos;
+    if (!merge && line.find("timings.build_cpu_samples") == std::string::npos) continue;
     EXPECT_EQ(line.rfind("FAIL     slower", 0), 0u) << line;
-    EXPECT_NE(line.find(" naylor strict "), std::string::npos) << line;
     std::istringstream words(line.substr(line.find("slower") + 6));
-    std::string scene;
-    words >> scene;
-    failed_scenes.insert(scene);
+    std::string scene, heuristic, shape;
+    words >> scene >> heuristic >> shape;
+    EXPECT_EQ(heuristic, "naylor") << line;
+    failed_groups.insert(scene + " " + shape);
   }
-  std::set<std::string> scenes;
-  for (const auto& r : planted["runs"]) scenes.insert(r["id"]["scene"].get<std::string>());
-  EXPECT_EQ(failed_scenes, scenes) << out_;
+  std::set<std::string> groups;
+  for (const auto& r : planted["runs"]) {
+    const auto& id = r["id"];
+    groups.insert(id["scene"].get<std::string>() + " " + id.value("operation", id["shape"].get<std::string>()));
+  }
+  EXPECT_EQ(failed_groups, groups) << out_;
 
   EXPECT_EQ(shell(std::string("BSPBENCH_PLANT_SLOWDOWN=naylor ") + BSPBENCH_EXE + " sweep --suite smoke --out x.json"), 2);
   EXPECT_NE(err_.find("BSPBENCH_PLANT_SLOWDOWN"), std::string::npos) << err_;

@@ -13,25 +13,33 @@ namespace bsp::sweep {
 
 namespace {
 
-// What the growth fits are taken of: fragments, nodes and build time, both the CPU time (steady on
-// a busy machine) and the builder's wall time.
+// What the growth fits are taken of: for drawing runs fragments, nodes and build time, both the CPU
+// time (steady on a busy machine) and the builder's wall time; for merge runs the result's size
+// before and after reduction, the nodes partitioning visits, and merge time.
 constexpr std::array<std::string_view, 2> kGrowthMetrics = {"fragments", "nodes"};
 constexpr std::array<std::string_view, 2> kGrowthTimings = {"build_cpu_seconds", "build_seconds"};
+constexpr std::array<std::string_view, 3> kMergeGrowthMetrics = {"before_nodes", "after_nodes", "partition_nodes"};
+constexpr std::array<std::string_view, 2> kMergeGrowthTimings = {"merge_cpu_seconds", "merge_seconds"};
 
 struct Group {
   nlohmann::json head;                                      // scene, heuristic, shape, scene_params
   std::map<std::uint64_t, std::vector<const nlohmann::json*>> by_n;
 };
 
+bool is_merge(const nlohmann::json& head) { return head.value("kind", "") == "merge"; }
+
 nlohmann::json group_head(const nlohmann::json& id) {
   nlohmann::json other = id["scene_params"];
   other.erase("n");
   other.erase("seed");
-  return {{"scene", id["scene"]},
-          {"heuristic", id["heuristic"]},
-          {"shape", id["shape"]},
-          {"scene_params", other},
-          {"constant_density", id.value("constant_density", false)}};
+  nlohmann::json head{{"kind", id.value("kind", "draw")},
+                      {"scene", id["scene"]},
+                      {"heuristic", id["heuristic"]},
+                      {"shape", id["shape"]},
+                      {"scene_params", other},
+                      {"constant_density", id.value("constant_density", false)}};
+  if (is_merge(head)) head["operation"] = id["operation"];
+  return head;
 }
 
 // Summary of every numeric field of `section` over the runs.
@@ -100,6 +108,11 @@ nlohmann::json group_json(const Group& g) {
   nlohmann::json sizes = nlohmann::json::array();
   for (const auto& [n, runs] : g.by_n) sizes.push_back(size_entry(n, runs));
   out["by_n"] = std::move(sizes);
+  if (is_merge(g.head)) {
+    out["growth"] = growth_section(g, "metrics", kMergeGrowthMetrics);
+    out["timing_growth"] = growth_section(g, "timings", kMergeGrowthTimings);
+    return out;
+  }
   out["growth"] = growth_section(g, "metrics", kGrowthMetrics);
   out["timing_growth"] = growth_section(g, "timings", kGrowthTimings);
   // Build time against the fragments made: the heuristic's cost per unit of output, which the

@@ -1,6 +1,7 @@
 #pragma once
-// Per (scene, heuristic, shape) aggregates of a report's runs: for each size, the mean and 95%
-// interval over seeds of every metric and timing; across sizes, the growth exponent k of
+// Per (kind, scene, heuristic, shape, and for merge runs the operation) aggregates of a report's
+// runs: for each size, the mean and 95% interval over seeds of every metric and timing; across
+// sizes, the growth exponent k of
 // y = c * n^k fitted by least squares on log-log axes (metrics/statistics.h) to every run's
 // (polygon count, value) point, with its R^2. With the same number of seeds at every size the
 // exponent equals the fit through the per-size means. Growth needs two distinct sizes and

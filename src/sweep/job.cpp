@@ -9,6 +9,7 @@
 #include "catalog.h"
 #include "common/errors.h"
 #include "common/hash.h"
+#include "solid_pairs.h"
 #include "split/registry.h"
 #include "tree/build.h"
 
@@ -54,11 +55,49 @@ std::vector<std::string> heuristic_names(const SuiteBlock& block) {
 
 Job make_job(const GeneratorInfo& g, const std::string& heuristic, bool incremental, Shape shape,
              std::uint64_t seed, std::uint64_t n, std::uint32_t views) {
-  Job job{g.name, {}, heuristic, incremental, shape, seed, n, views, {}};
+  Job job{g.name, {}, heuristic, incremental, shape, seed, n, views, std::nullopt, 0, {}};
   if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
   if (find_spec(g, "seed")) job.scene_params.emplace_back("seed", std::to_string(seed));
   assign_key(job);
   return job;
+}
+
+std::vector<std::string> pair_names(const MergeBlock& block) {
+  if (!block.pairs.empty()) return block.pairs;
+  std::vector<std::string> all;
+  for (const auto& p : solid_pairs()) all.push_back(p.name);
+  return all;
+}
+
+std::vector<SetOp> set_ops(const MergeBlock& block) {
+  if (!block.ops.empty()) return block.ops;
+  return {SetOp::Union, SetOp::Intersection, SetOp::Difference, SetOp::SymmetricDifference};
+}
+
+std::vector<std::uint64_t> pair_sizes(const SolidPairInfo& pair, const MergeBlock& block) {
+  if (!pair.sized) return {0};
+  std::vector<std::uint64_t> out;
+  for (auto s : block.sizes)
+    if (static_cast<double>(s) >= pair.min_n && static_cast<double>(s) <= pair.max_n) out.push_back(s);
+  return out;
+}
+
+void expand_merge_block(const MergeBlock& block, std::vector<Job>& out) {
+  SuiteBlock heuristics_only;
+  heuristics_only.heuristics = block.heuristics;
+  for (const auto& name : pair_names(block)) {
+    const SolidPairInfo& pair = find_solid_pair(name);
+    for (auto n : pair_sizes(pair, block))
+      for (const auto& h : heuristic_names(heuristics_only))
+        for (auto op : set_ops(block))
+          for (auto seed : block.seeds) {
+            Job job{pair.name, {}, h, false, Shape::Strict, seed, n, 0, op, block.points, {}};
+            if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
+            job.scene_params.emplace_back("seed", std::to_string(seed));
+            assign_key(job);
+            out.push_back(std::move(job));
+          }
+  }
 }
 
 void expand_block(const SuiteBlock& block, std::vector<Job>& out) {
@@ -74,6 +113,17 @@ void expand_block(const SuiteBlock& block, std::vector<Job>& out) {
 
 const char* shape_name(Shape s) { return s == Shape::Coarse ? "coarse" : "strict"; }
 
+ParamSet operand_params(const SolidOperand& o) {
+  return ParamSet::resolve(find_generator(o.scene).params, o.params, "scene " + o.scene);
+}
+
+// A merge job's pair parameters as given (n when the pair is sized, and the seed).
+nlohmann::json pair_params_json(const Job& job) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [k, v] : job.scene_params) out[k] = std::stoull(v);
+  return out;
+}
+
 ParamSet scene_params(const Job& job) {
   const GeneratorInfo& g = find_generator(job.scene);
   return ParamSet::resolve(g.params, job.scene_params, "scene " + g.name);
@@ -86,12 +136,27 @@ ParamSet heuristic_params(const Job& job) {
   return ParamSet::resolve(h.params, v.params, "heuristic " + h.name);
 }
 
-std::string build_arguments(const Job& job) {
-  if (job.incremental) return " --incremental --order shuffled";
-  const HeuristicVariant v = parse_heuristic_variant(job.heuristic);
+std::string heuristic_arguments(const HeuristicVariant& v) {
   std::string out = " --heuristic " + v.name;
   for (const auto& [k, value] : v.params) out += " --param " + k + "=" + value;
   return out;
+}
+
+std::string merge_command(const Job& job) {
+  std::string command = "bspbench merge";
+  const auto operands = merge_operands(job);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::string which = i == 0 ? "--a" : "--b";
+    command += " " + which + " " + operands[i].scene;
+    for (const auto& [k, v] : operands[i].params) command += " " + which + "-param " + k + "=" + v;
+  }
+  return command + " --op " + std::string(set_op_name(*job.op)) + heuristic_arguments(parse_heuristic_variant(job.heuristic)) +
+         " --seed " + std::to_string(job.seed) + " --points " + std::to_string(job.points);
+}
+
+std::string build_arguments(const Job& job) {
+  if (job.incremental) return " --incremental --order shuffled";
+  return heuristic_arguments(parse_heuristic_variant(job.heuristic));
 }
 
 }  // namespace
@@ -127,9 +192,28 @@ std::string run_hash(const Job& job, const std::string& scene) {
   return h.hex();
 }
 
+// A merge job's key: the pair, both operands as resolved, the operation and the points checked.
+std::string merge_hash(const Job& job) {
+  Hasher h;
+  h.add_string("merge");
+  h.add_string(job.scene);
+  for (const auto& o : merge_operands(job)) {
+    h.add_string(o.scene);
+    h.add_string(operand_params(o).canonical());
+  }
+  h.add_string(job.heuristic);
+  h.add_string(heuristic_params(job).canonical());
+  h.add_string(set_op_name(*job.op));
+  h.add_u64(job.seed);
+  h.add_u64(job.points);
+  return h.hex();
+}
+
 }  // namespace
 
-void assign_key(Job& job) { job.key = run_hash(job, scene_params(job).canonical()); }
+std::array<SolidOperand, 2> merge_operands(const Job& job) { return find_solid_pair(job.scene).operands(job.n, job.seed); }
+
+void assign_key(Job& job) { job.key = job.op ? merge_hash(job) : run_hash(job, scene_params(job).canonical()); }
 
 namespace {
 
@@ -144,13 +228,14 @@ const std::string& scene_hash(const Job& job) {
 }
 
 // What a run measures, apart from the nominal size: two jobs alike in all of it are one run.
-std::string run_identity(const Job& job) { return run_hash(job, scene_hash(job)); }
+std::string run_identity(const Job& job) { return job.op ? job.key : run_hash(job, scene_hash(job)); }
 
 }  // namespace
 
 std::vector<Job> expand(const Suite& suite) {
   std::vector<Job> all;
   for (const auto& block : suite.blocks) expand_block(block, all);
+  for (const auto& block : suite.merges) expand_merge_block(block, all);
   // Smallest nominal size first, so a scene built at several sizes runs once, at the smallest.
   std::stable_sort(all.begin(), all.end(), [](const Job& a, const Job& b) { return a.n < b.n; });
   std::vector<Job> jobs;
@@ -191,11 +276,35 @@ std::string definition_hash(const std::string& suite_name, const std::vector<Job
   return h.hex();
 }
 
+namespace {
+
+nlohmann::json merge_identity(const Job& job) {
+  nlohmann::json operands = nlohmann::json::array();
+  for (const auto& o : merge_operands(job)) operands.push_back({{"scene", o.scene}, {"params", operand_params(o).to_json()}});
+  return {{"kind", "merge"},
+          {"scene", job.scene},
+          {"scene_params", pair_params_json(job)},
+          {"operands", std::move(operands)},
+          {"heuristic", job.heuristic},
+          {"heuristic_params", heuristic_params(job).to_json()},
+          {"operation", set_op_name(*job.op)},
+          {"build", "recursive"},
+          {"shape", shape_name(job.shape)},
+          {"seed", job.seed},
+          {"n", job.n},
+          {"points", job.points},
+          {"command", merge_command(job)}};
+}
+
+}  // namespace
+
 nlohmann::json job_identity(const Job& job) {
+  if (job.op) return merge_identity(job);
   std::string command = "bspbench build --scene " + job.scene;
   if (job.n > 0) command += " --n " + std::to_string(job.n);
   command += " --seed " + std::to_string(job.seed) + build_arguments(job) + " --shape " + shape_name(job.shape);
-  return {{"scene", job.scene},
+  return {{"kind", "draw"},
+          {"scene", job.scene},
           {"scene_params", scene_params(job).to_json()},
           {"constant_density", find_generator(job.scene).constant_density},
           {"heuristic", job.heuristic},

@@ -1,15 +1,24 @@
 #pragma once
 // One run of a sweep and its identity. A job's key is a hash of everything that determines its
 // deterministic results (scene, resolved scene parameters, heuristic, resolved heuristic parameters,
-// shape, seed, validation views), so journals, shards, merges and regression gates all match runs by
-// key. The seed feeds both the scene generator and the heuristic, as in `bspbench build --seed`.
+// shape, seed, validation views; for a merge job the operation, both operands' resolved parameters
+// and the points checked), so journals, shards, merges and regression gates all match runs by key.
+// The seed feeds both the scene generator and the heuristic, as in `bspbench build --seed`.
+//
+// Two kinds of job: a drawing job builds one scene's tree and measures it (run_job.h); a merge job
+// (`op` set) builds the two operands of a solid pair (solid_pairs.h) as solid trees and merges them
+// by a set operation (run_merge_job.h).
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
 #include "common/params.h"
+#include "solid/merge.h"
+#include "solid_pairs.h"
 #include "sweep/suite.h"
 #include "tree/tree.h"
 
@@ -24,6 +33,8 @@ struct Job {
   std::uint64_t seed = 1;
   std::uint64_t n = 0;  // requested size; 0 when the generator has no `n`
   std::uint32_t validation_views = 0;
+  std::optional<SetOp> op;  // merge jobs: `scene` names a solid pair, `n` is each operand's size
+  std::uint64_t points = 0;  // merge jobs: points classified against CGAL's exact answer
   std::string key;  // 16 hex digits, see the header comment
 };
 
@@ -56,7 +67,12 @@ std::string definition_hash(const std::string& suite_name, const std::vector<Job
 
 // {scene, scene_params, heuristic, heuristic_params, build, shape, seed, n, validation_views}: the identity
 // printed in reports and regression tables, with the `bspbench build` command that rebuilds the tree.
+// A merge job's adds kind "merge", operation, points and operands (each scene with its resolved
+// parameters), and its command is the `bspbench merge` that repeats the run.
 nlohmann::json job_identity(const Job& job);
+
+// A merge job's two operands (its pair's, for its size and seed).
+std::array<SolidOperand, 2> merge_operands(const Job& job);
 
 // Fills job.key from the other fields (resolving parameters, so defaults count).
 void assign_key(Job& job);

@@ -25,6 +25,16 @@ constexpr TimingField kTimingFields[] = {
     {"validation_seconds", TimingKind::Wall, "wall time of the Embree order check"},
     {"validation_rays_per_second", TimingKind::Rate, "rays cast per wall-clock second in the order check"},
     {"job_seconds", TimingKind::Wall, "wall time of the whole job"},
+    {"merge_cpu_samples", TimingKind::MergeSamples,
+     "thread CPU seconds per merge (merge and reduce), one per timed batch of at least 2 ms (run_merge_job.h)"},
+    {"merge_cpu_seconds", TimingKind::MergeSummary, "the median of merge_cpu_samples"},
+    {"merge_cpu_merges", TimingKind::MergeCount, "merges timed for the samples: depends on the machine's speed"},
+    {"merge_seconds", TimingKind::Wall, "wall time of the first merge (the result that is checked), reduction excluded"},
+    {"reduce_seconds", TimingKind::Wall, "wall time of the first merge's reduction"},
+    {"build_a_cpu_seconds", TimingKind::Cpu, "thread CPU seconds of the first operand's solid tree (build and labels)"},
+    {"build_b_cpu_seconds", TimingKind::Cpu, "thread CPU seconds of the second operand's solid tree"},
+    {"corefine_seconds", TimingKind::Wall, "wall time of CGAL's corefinement of the same operands (the reference)"},
+    {"check_seconds", TimingKind::Wall, "wall time of the proof against CGAL (points, volume, boundary)"},
 };
 
 }  // namespace

@@ -29,14 +29,15 @@ constexpr const char* kDeterministicSections[] = {"id", "metrics", "invariants",
 constexpr std::pair<const char*, const char*> kMustBeZero[] = {
     {"invariants", "violations"}, {"validation", "violations"}, {"ray_shooting", "mismatches"}};
 
-std::string run_label(const nlohmann::json& id) {
-  return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + id.value("shape", "?") +
-         " n=" + id.value("n", nlohmann::json()).dump() + " seed=" + id.value("seed", nlohmann::json()).dump();
+// The timing group of a run (regress.h): a merge run's shape is its operation.
+std::string group_label(const nlohmann::json& id) {
+  const std::string shape = id.contains("operation") ? id.value("operation", "?") : id.value("shape", "?");
+  return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + shape;
 }
 
-// The timing group of a run (regress.h).
-std::string group_label(const nlohmann::json& id) {
-  return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + id.value("shape", "?");
+std::string run_label(const nlohmann::json& id) {
+  return group_label(id) + " n=" + id.value("n", nlohmann::json()).dump() +
+         " seed=" + id.value("seed", nlohmann::json()).dump();
 }
 
 // A section of a run, or null when the run has none.
@@ -47,6 +48,7 @@ const nlohmann::json& section_of(const nlohmann::json& run, const char* section)
 
 // A group's calibrated build samples, each divided by its job's median calibrated baseline sample.
 struct TimingGroup {
+  std::string field;  // the gated timing
   std::vector<double> baseline, current;
 };
 
@@ -92,11 +94,16 @@ struct Comparer {
   }
 };
 
-// The build samples of a run divided by its calibration time; empty when it has none.
+// The gated samples of a run: a drawing run's builds, a merge run's merges.
+std::string gated_field(const nlohmann::json& run) {
+  const bool merge = section_of(run, "id").value("kind", "") == "merge";
+  return std::string(timing_field_name(merge ? TimingKind::MergeSamples : TimingKind::BuildSamples));
+}
+
+// The gated samples of a run divided by its calibration time; empty when it has none.
 std::vector<double> calibrated_samples(const nlohmann::json& run) {
   std::vector<double> out;
-  const auto& samples = section_of(run, "timings").value(std::string(timing_field_name(TimingKind::BuildSamples)),
-                                                          nlohmann::json::array());
+  const auto& samples = section_of(run, "timings").value(gated_field(run), nlohmann::json::array());
   const double calibration = run["calibration_seconds"].get<double>();
   for (const auto& s : samples)
     if (s.is_number()) out.push_back(s.get<double>() / calibration);
@@ -105,6 +112,7 @@ std::vector<double> calibrated_samples(const nlohmann::json& run) {
 
 // Adds a matched pair of runs to its timing group, on the scale of the baseline job's median.
 void add_timings(const nlohmann::json& b, const nlohmann::json& c, TimingGroup& group) {
+  group.field = "timings." + gated_field(b);
   const std::vector<double> base = calibrated_samples(b), cur = calibrated_samples(c);
   const double scale = median(base);
   if (base.empty() || cur.empty() || !(scale > 0)) return;
@@ -114,7 +122,6 @@ void add_timings(const nlohmann::json& b, const nlohmann::json& c, TimingGroup& 
 
 void judge_timings(const std::map<std::string, TimingGroup>& groups, const RegressOptions& options,
                    RegressResult& result) {
-  const std::string field = "timings." + std::string(timing_field_name(TimingKind::BuildSamples));
   for (const auto& [label, g] : groups) {
     if (g.baseline.empty() || g.current.empty()) continue;
     ++result.timing_groups;
@@ -125,9 +132,9 @@ void judge_timings(const std::map<std::string, TimingGroup>& groups, const Regre
     const std::string base = "median 1 (" + std::to_string(g.baseline.size()) + " samples)";
     const std::string cur = "x" + number_text(ratio) + " (p=" + number_text(test.p) + ")";
     if (ratio >= options.time_tolerance)
-      result.changes.push_back({true, "slower", label, field, base, cur});
+      result.changes.push_back({true, "slower", label, g.field, base, cur});
     else if (ratio <= 1 / options.time_tolerance)
-      result.changes.push_back({false, "faster", label, field, base, cur});
+      result.changes.push_back({false, "faster", label, g.field, base, cur});
   }
 }
 

@@ -12,7 +12,8 @@
 //
 // Build times are judged per group (scene x heuristic x shape, pooling sizes and seeds), never per
 // run against a fixed factor. Each run holds kBuildSamples thread-CPU samples per build
-// (run_job.h). Every sample is divided by its run's calibration kernel time (calibration.h), so a
+// (run_job.h); a merge run holds as many per merge (run_merge_job.h), grouped by pair x heuristic
+// x operation and judged the same way. Every sample is divided by its run's calibration kernel time (calibration.h), so a
 // slower or faster machine cancels out, and then by the median calibrated baseline sample of the
 // same job, so a group's sizes and seeds share one scale: baseline values scatter around 1 and a
 // job k times slower gives values around k. The group's pooled baseline and current values are

@@ -14,6 +14,7 @@
 #include "split/registry.h"
 #include "sweep/calibration.h"
 #include "sweep/record.h"
+#include "sweep/run_merge_job.h"
 #include "tree/build.h"
 #include "validate/order_check.h"
 #include "validate/ray_shoot_check.h"
@@ -82,27 +83,33 @@ void burn_until(double start, double seconds) {
   while (thread_cpu_seconds() - start < seconds) sink = sink + 1;
 }
 
-// The timed batches of run_job.h: each repeats the build until kMinBatchSeconds of CPU have passed.
+// The build's timed batches (run_job.h).
 void time_builds(const Job& job, const Scene& scene, double plant, nlohmann::json& timings) {
-  std::vector<double> samples;
-  std::uint64_t builds = 0;
+  const TimedBatches batches = time_batches([&] { build_once(job, scene); }, plant);
+  timings["build_cpu_samples"] = batches.samples;
+  timings["build_cpu_builds"] = batches.runs;
+  timings["build_cpu_seconds"] = batches.median();
+}
+
+}  // namespace
+
+double TimedBatches::median() const { return bsp::median(samples); }
+
+TimedBatches time_batches(const std::function<void()>& work, double plant) {
+  TimedBatches out;
   for (int s = 0; s < kBuildSamples; ++s) {
     const double start = thread_cpu_seconds();
     std::uint64_t batch = 0;
     do {
-      build_once(job, scene);
+      work();
       ++batch;
     } while (thread_cpu_seconds() - start < kMinBatchSeconds);
     if (plant > 1) burn_until(start, plant * (thread_cpu_seconds() - start));
-    samples.push_back((thread_cpu_seconds() - start) / static_cast<double>(batch));
-    builds += batch;
+    out.samples.push_back((thread_cpu_seconds() - start) / static_cast<double>(batch));
+    out.runs += batch;
   }
-  timings["build_cpu_samples"] = samples;
-  timings["build_cpu_builds"] = builds;
-  timings["build_cpu_seconds"] = median(samples);
+  return out;
 }
-
-}  // namespace
 
 PlantedSlowdown parse_planted_slowdown(const std::string& text) {
   const auto colon = text.rfind(':');
@@ -117,6 +124,7 @@ PlantedSlowdown parse_planted_slowdown(const std::string& text) {
 }
 
 nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& plant) {
+  if (job.op) return run_merge_job(job, plant);
   const auto start = std::chrono::steady_clock::now();
   Scene scene = make_scene(job.scene, job.scene_params);
   check_scene(scene, "scene " + scene.name);

@@ -13,8 +13,11 @@
 // build_cpu_seconds is the samples' median, build_cpu_builds the builds timed. Thread CPU time, not
 // wall time: on a shared machine the wall time measures the other users as much as the code. Build
 // and metrics are single-threaded, so their thread CPU time is their whole cost.
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -37,8 +40,18 @@ struct PlantedSlowdown {
 // Parses "heuristic:factor"; throws UsageError naming the variable.
 PlantedSlowdown parse_planted_slowdown(const std::string& text);
 
+// The timed batches described above, of any work: kBuildSamples batches, each repeating `work`
+// until kMinBatchSeconds of thread CPU have passed, burning (plant - 1) times each batch's CPU
+// time when plant > 1 (the planted slowdown).
+struct TimedBatches {
+  std::vector<double> samples;  // CPU seconds per run of `work`, one per batch
+  std::uint64_t runs = 0;       // runs timed in all
+  double median() const;
+};
+TimedBatches time_batches(const std::function<void()>& work, double plant = 1.0);
+
 // Throws what the pieces throw (UsageError for a bad name or parameter; anything else is a bug the
-// runner reports as a failed job).
+// runner reports as a failed job). A merge job (job.op set) runs run_merge_job.h.
 nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& plant = {});
 
 }  // namespace bsp::sweep

@@ -26,10 +26,17 @@ std::vector<SceneSizes> with_near_degenerate(std::vector<SceneSizes> sizes, std:
 const std::vector<std::string> kExhaustive = {"balanced:candidates=0", "min-relation:candidates=0",
                                               "weighted:candidates=0", "quake:candidates=0"};
 
+// Set operations on two solid pairs (spheres, hollow boxes), every heuristic and operation.
+MergeBlock few_merges(std::vector<std::uint64_t> sizes, std::vector<std::uint64_t> seeds, std::uint64_t points) {
+  return {{"spheres", "hollow-boxes"}, {}, {}, std::move(sizes), std::move(seeds), points};
+}
+
 Suite smoke() {
   return {"smoke",
-          "seconds: every scene and heuristic at two tiny sizes, one view; for tests and trying things out",
-          {{{}, {}, {40, 100}, superlinear({16, 32}, {30, 60}), {1, 2}, {Shape::Strict}, {1, 0, 1}}}};
+          "seconds: every scene and heuristic at two tiny sizes, one view, and merges of two solid pairs at one; "
+          "for tests and trying things out",
+          {{{}, {}, {40, 100}, superlinear({16, 32}, {30, 60}), {1, 2}, {Shape::Strict}, {1, 0, 1}}},
+          {few_merges({50}, {1}, 2000)}};
 }
 
 // CI's gate, so everything that can break is in it: strict trees at three sizes; coarse leaves and
@@ -42,7 +49,8 @@ Suite quick() {
            {{}, {}, {300}, superlinear({60}, {200}), {1, 2}, {Shape::Coarse}, {2, 0, 2}},
            {{}, kExhaustive, {300}, superlinear({60}, {200}), {1, 2}, {Shape::Strict}, {2, 0, 2}},
            {{}, {}, {100, 300}, superlinear({30, 60}, {100, 200}), {1, 2}, {Shape::Strict, Shape::Coarse}, {2, 0, 2},
-            true}}};
+            true}},
+          {few_merges({100, 300}, {1, 2}, 5000)}};
 }
 
 std::vector<SceneSizes> default_sizes() {
@@ -54,7 +62,17 @@ Suite default_suite() {
           "about 4 minutes on 2 idle cores: every scene and heuristic and the exhaustive scorers, 4 sizes to 3*10^3 "
           "(near-degenerate to 10^3), 3 seeds, 2 views (1 past 10^3)",
           {{{}, {}, {100, 300, 1000, 3000}, default_sizes(), {1, 2, 3}, {Shape::Strict}, {2, 1000, 1}},
-           {{}, kExhaustive, {100, 300, 1000, 3000}, default_sizes(), {1, 2, 3}, {Shape::Strict}, {2, 1000, 1}}}};
+           {{}, kExhaustive, {100, 300, 1000, 3000}, default_sizes(), {1, 2, 3}, {Shape::Strict}, {2, 1000, 1}}},
+          {{{}, {}, {}, {100, 300, 1000}, {1, 2, 3}, 10000}}};
+}
+
+// Set operations only: every solid pair, heuristic and operation at four sizes to 10^4 polygons per
+// operand, 5 seeds, 10^4 points proved per run.
+Suite merge_suite() {
+  return {"merge",
+          "every solid pair, heuristic and set operation, 4 sizes to 10^4 per operand, 5 seeds",
+          {},
+          {{{}, {}, {}, {300, 1000, 3000, 10000}, {1, 2, 3, 4, 5}, 10000}}};
 }
 
 // The large sizes run every heuristic at its defaults (sampled candidates keep each build near
@@ -80,7 +98,7 @@ Suite full() {
 }  // namespace
 
 const std::vector<Suite>& suites() {
-  static const std::vector<Suite> all = {smoke(), quick(), default_suite(), full()};
+  static const std::vector<Suite> all = {smoke(), quick(), default_suite(), merge_suite(), full()};
   return all;
 }
 

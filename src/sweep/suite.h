@@ -1,7 +1,8 @@
 #pragma once
-// Sweep suites: named sets of runs (scene x size x heuristic x shape x seed). A suite names no
-// heuristic and, in its main block, no scene: it takes every entry of the registries, so a heuristic
-// or generator added there is swept without further wiring. Sizes are the generators' `n`
+// Sweep suites: named sets of runs (scene x size x heuristic x shape x seed, and solid pair x size x
+// heuristic x set operation x seed for merges). A suite names no heuristic and, in its main block,
+// no scene: it takes every entry of the registries, so a heuristic or generator added there is
+// swept without further wiring. Sizes are the generators' `n`
 // parameter; a generator without one runs once at its defaults, and a size outside a generator's
 // `n` range is skipped for it.
 #include <cstdint>
@@ -9,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "solid/merge.h"
 #include "tree/tree.h"
 
 namespace bsp::sweep {
@@ -44,10 +46,23 @@ struct SuiteBlock {
   bool incremental = false;
 };
 
+// Set operations on solid pairs (generators/solid_pairs.h): one merge job per pair, size, heuristic,
+// operation and seed. Each job builds both operands' solid trees with the heuristic, merges them,
+// times the merge, and proves the result against CGAL (validate/solid_check.h).
+struct MergeBlock {
+  std::vector<std::string> pairs;       // empty: every pair
+  std::vector<std::string> heuristics;  // empty: every registered heuristic
+  std::vector<SetOp> ops;               // empty: union, intersection, difference and xor
+  std::vector<std::uint64_t> sizes;     // polygons per operand, within the pair's range; unsized pairs run once
+  std::vector<std::uint64_t> seeds;
+  std::uint64_t points = 0;             // classified against CGAL's exact answer per run
+};
+
 struct Suite {
   std::string name;
   std::string summary;  // one line, with the measured run time
   std::vector<SuiteBlock> blocks;
+  std::vector<MergeBlock> merges = {};
 };
 
 const std::vector<Suite>& suites();
