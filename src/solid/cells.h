@@ -22,8 +22,9 @@ struct Cell {
 
 Cell box_cell(const Box& box);
 // The parts in front of and behind the plane; either may come back empty (no faces). The cap is
-// every cut point ordered by angle: the two cuts of one edge (from its two faces) differ by
-// rounding and give a zero-length edge, which adds nothing to a volume or an area.
+// chained from the faces' chords across the plane, whose ends are bit-identical cut points, so its
+// order is exact however close its points lie; only when rounding made a face's signs non-convex
+// are the cut points ordered by angle instead.
 void split_cell(const Cell& cell, const Plane& plane, Ref node, Cell& front, Cell& back);
 double cell_volume(const Cell& cell);
 
