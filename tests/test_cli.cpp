@@ -137,6 +137,19 @@ TEST_F(Cli, ValidatePrintsOneJsonObjectWithTheCounts) {
     EXPECT_NE(r.out.find(key), std::string::npos) << key;
 }
 
+TEST_F(Cli, AnimateChecksEveryFrameAndRefusesUnknownStrategies) {
+  const CliResult r = run("animate --scene city --n 300 --moving 2 --frames 4 --object-n 24 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  EXPECT_EQ(out["summary"]["frames"], 4);
+  EXPECT_EQ(out["summary"]["frames_checked"], 4);
+  EXPECT_EQ(out["summary"]["order_violations"], 0);
+  EXPECT_EQ(out["per_frame"].size(), 4u);
+  EXPECT_EQ(out["animation"]["paths"].size(), 2u);
+  expect_usage_error("animate --scene city --n 300 --frames 4 --strategy teleport", "unknown update strategy");
+  expect_usage_error("animate --scene city --n 300 --object city", "not a closed solid");
+}
+
 TEST_F(Cli, EveryJsonOutputCarriesTheScenesHashAndBoundingBox) {
   const std::string scene = "--scene city --n 60 --seed 4";
   const std::string out = (dir_ / "out" / "run").string();

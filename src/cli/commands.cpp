@@ -21,6 +21,7 @@ const std::vector<Command>& commands() {
       validate_command(),
       merge_command(),
       classify_command(),
+      animate_command(),
   };
   return all;
 }

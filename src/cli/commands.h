@@ -41,5 +41,6 @@ Command order_command();
 Command validate_command();
 Command merge_command();
 Command classify_command();
+Command animate_command();
 
 }  // namespace bsp::cli
