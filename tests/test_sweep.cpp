@@ -141,7 +141,9 @@ TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
       EXPECT_EQ(scenes.size(), drawn_scene_count());
       EXPECT_EQ(heuristics_seen.size(), heuristics().size());
     }
-    if (!suite.merges.empty()) EXPECT_EQ(merge_heuristics.size(), heuristics().size());
+    if (!suite.merges.empty()) {
+      EXPECT_EQ(merge_heuristics.size(), heuristics().size());
+    }
   }
 }
 
