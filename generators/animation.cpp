@@ -44,7 +44,7 @@ Vec3 rotate(const Vec3& p, const Vec3& k, double angle) {
   return p * c + cross(k, p) * s + k * (dot(k, p) * (1 - c));
 }
 
-// A uniformly distributed unit vector (Marsaglia 1972).
+// A uniformly distributed unit vector [Marsaglia1972].
 Vec3 random_axis(Rng& rng) {
   for (;;) {
     const double a = rng.uniform(-1, 1), b = rng.uniform(-1, 1), q = a * a + b * b;
