@@ -1,7 +1,8 @@
 // bspbench animate: a static scene with moving solids (generators/animation.h) kept as one tree
 // frame by frame by an update strategy (dynamic/updater.h); every checked frame's back-to-front
-// orders are validated against Embree and its tree's invariants checked. Exit code 1 when any
-// frame fails either check.
+// orders are validated against Embree and its tree's invariants checked. Each frame reports its
+// update's CPU time, the tree's size and depth, and the culled traversal's cost from fixed views of
+// the static box. Exit code 1 when any frame fails either check.
 #include <algorithm>
 #include <iostream>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "cli/run_args.h"
 #include "dynamic/updater.h"
 #include "metrics/statistics.h"
+#include "metrics/traversal_cost.h"
 #include "validate/order_check.h"
 #include "validate/tree_invariants.h"
 
@@ -38,9 +40,13 @@ AnimationSpec spec_from(Args& args, std::uint64_t seed) {
   return s;
 }
 
+// Views of the static scene's box (metric_views), the same for every frame so frames compare.
+constexpr std::uint32_t kCostViews = 4;
+
 struct FrameRecord {
   UpdateWork work;
   std::uint64_t fragments = 0, nodes = 0, depth = 0, order_violations = 0, invariant_violations = 0;
+  TraversalCost cost;
   bool checked = false;
 };
 
@@ -60,9 +66,9 @@ std::uint64_t depth_of(const Tree& tree) {
 }
 
 FrameRecord check_frame(const Updater& u, const UpdateWork& work, std::span<const Polygon> input, bool check,
-                        const ValidationSettings& settings) {
+                        const ValidationSettings& settings, std::span<const Frustum> views) {
   const Tree& tree = u.tree();
-  FrameRecord f{work, tree.fragments.size(), tree.nodes.size(), depth_of(tree), 0, 0, check};
+  FrameRecord f{work, tree.fragments.size(), tree.nodes.size(), depth_of(tree), 0, 0, traversal_cost(tree, views), check};
   if (!check) return f;
   f.invariant_violations = check_tree_invariants(tree, input).violations;
   if (settings.views > 0) f.order_violations = validate_tree(tree, settings).violations;
@@ -70,11 +76,12 @@ FrameRecord check_frame(const Updater& u, const UpdateWork& work, std::span<cons
 }
 
 nlohmann::json summary(const std::vector<FrameRecord>& frames) {
-  std::vector<double> seconds, fragments;
+  std::vector<double> seconds, fragments, visited;
   std::uint64_t order = 0, invariants = 0, checked = 0;
   for (const auto& f : frames) {
     seconds.push_back(f.work.seconds);
     fragments.push_back(static_cast<double>(f.fragments));
+    visited.push_back(f.cost.culled_nodes_visited);
     order += f.order_violations;
     invariants += f.invariant_violations;
     checked += f.checked;
@@ -87,7 +94,8 @@ nlohmann::json summary(const std::vector<FrameRecord>& frames) {
           {"update_cpu_seconds_max", *std::max_element(seconds.begin(), seconds.end())},
           {"fragments_first", frames.front().fragments},
           {"fragments_last", frames.back().fragments},
-          {"fragments_median", median(fragments)}};
+          {"fragments_median", median(fragments)},
+          {"culled_nodes_visited_median", median(visited)}};
 }
 
 nlohmann::json frames_json(const std::vector<FrameRecord>& frames) {
@@ -98,6 +106,8 @@ nlohmann::json frames_json(const std::vector<FrameRecord>& frames) {
                    {"fragments", f.fragments},
                    {"nodes", f.nodes},
                    {"depth", f.depth},
+                   {"culled_nodes_visited", f.cost.culled_nodes_visited},
+                   {"culled_fragments_emitted", f.cost.culled_fragments_emitted},
                    {"checked", f.checked},
                    {"order_violations", f.order_violations},
                    {"invariant_violations", f.invariant_violations}});
@@ -122,12 +132,14 @@ int run(Args& args) {
   const Animation animation(spec);
   auto updater = make_updater(strategy, settings);
   const Scene& still = animation.static_scene();
+  const std::vector<Frustum> cost_views = metric_views(bounds(still), kCostViews);
   std::vector<FrameRecord> frames;
   for (std::uint32_t f = 0; f < spec.frames; ++f) {
     const std::vector<Polygon> moving = animation.moving_at(f, static_cast<std::uint32_t>(still.polygons.size()));
     const UpdateWork work = f == 0 ? updater->start(still.polygons, moving, spec.moving) : updater->update(moving);
     const Scene input = animation.frame(f);
-    frames.push_back(check_frame(*updater, work, input.polygons, f % every == 0 || f + 1 == spec.frames, views));
+    frames.push_back(
+        check_frame(*updater, work, input.polygons, f % every == 0 || f + 1 == spec.frames, views, cost_views));
   }
   nlohmann::json out = {{"animation", animation.describe()},
                         {"strategy", strategy},
