@@ -272,7 +272,8 @@ def plot_merge_time(pair, ops, path):
     fig, axes = plt.subplots(1, len(ops), figsize=(4.2 * len(ops), 4.2), squeeze=False)
     for ax, (op, aggs) in zip(axes[0], ops.items()):
         for agg in sorted(aggs, key=lambda a: a["heuristic"]):
-            pts = [(e["n"], e["timings"].get("merge_cpu_seconds")) for e in agg["by_n"]]
+            # Unsized pairs (n = 0) are placed at their polygons per operand.
+            pts = [(e["n"] or e["n_polygons"]["mean"] / 2, e["timings"].get("merge_cpu_seconds")) for e in agg["by_n"]]
             pts = [(x, y) for x, y in pts if y is not None and x > 0 and y["mean"] > 0]
             if pts:
                 ax.errorbar([x for x, _ in pts], [y["mean"] for _, y in pts], yerr=[ci_half(y) for _, y in pts],
@@ -335,7 +336,12 @@ def merge_verdict(op, aggs):
     bt, st = b["timings"]["merge_cpu_seconds"], s["timings"]["merge_cpu_seconds"]
     b_hi = bt["ci95"][1] if bt.get("ci95") else bt["mean"]
     s_lo = st["ci95"][0] if st.get("ci95") else st["mean"]
-    separated = "yes" if b_hi < s_lo else "no (intervals overlap)"
+    if len(ranked) == 1:
+        second, st, separated = "—", None, "— (one heuristic)"
+    elif bt.get("ci95") is None or st.get("ci95") is None:
+        separated = "— (one seed: no interval)"
+    else:
+        separated = "yes" if b_hi < s_lo else "no (intervals overlap)"
     names = [h for h, _ in ranked]
     naylor = f"{names.index('naylor') + 1} of {len(names)}" if "naylor" in names else "not run"
     smallest = min(at_n, key=lambda he: he[1]["metrics"]["after_nodes"]["mean"])[0]
@@ -368,7 +374,7 @@ def merge_section(report, out_dir):
         return "", ""
     parts = ["<h2 id='merges'>Set operations: merge cost by heuristic</h2>"
              "<p>Each run builds both operands of a solid pair as solid trees with one heuristic, merges them "
-             "(Naylor, Amanatides and Thibault 1990), and proves the result against CGAL (point membership, "
+             "[Naylor1990], and proves the result against CGAL (point membership, "
              "volume against corefinement, closed boundary). The verdict asks which heuristic's trees merge "
              "fastest at the largest size, whether the 95% intervals over seeds separate it from the runner-up, "
              "where Naylor's expected-cost trees rank, which result is smallest after reduction, and which "

@@ -7,42 +7,38 @@ namespace bsp {
 
 namespace {
 
-SolidPairInfo pair(std::string name, std::string purpose, std::string generator, ParamAssignments second_placement) {
-  return {std::move(name), std::move(purpose), generator, generator, {}, std::move(second_placement)};
-}
-
-// The n range both operands accept (their generators' `n`), or unsized when they have none.
-SolidPairInfo with_sizes(SolidPairInfo p) {
-  for (const auto& spec : find_generator(p.first).params)
-    if (spec.name == "n") {
+// Two copies of one generator, the second placed by `second_placement`. `sized`: n goes to both
+// operands, within the range their generator accepts; false for a generator that declares `n` but
+// ignores it (the sponge: its level sets the count).
+SolidPairInfo pair(std::string name, std::string generator, ParamAssignments second_placement,
+                   ParamAssignments first_placement = {}, bool sized = true) {
+  SolidPairInfo p{std::move(name), generator, generator, std::move(first_placement), std::move(second_placement), sized};
+  for (const auto& spec : find_generator(generator).params)
+    if (sized && spec.name == "n") {
       p.min_n = spec.min;
       p.max_n = spec.max;
-      return p;
     }
-  p.sized = false;
   return p;
 }
 
+// What each pair exercises:
+//  spheres       convex operands whose autopartitions are chains; centres half a radius apart
+//  tori          operands with holes, one moved along its ring's radius, rotated independently
+//  cylinders     flat caps and long side faces, rotated independently across each other
+//  polytopes     two random convex polytopes (independent planes), half a radius apart
+//  hollow-boxes  non-convex, cavities overlapping, moved along the diagonal
+//  sponges       two level-2 Menger sponges (1,056 quads each) off each other's voxel grid: tunnels,
+//                coplanar faces
 std::vector<SolidPairInfo> make_pairs() {
-  std::vector<SolidPairInfo> pairs = {
-      pair("spheres", "two spheres, centres half a radius apart: convex operands whose autopartitions are chains",
-           "sphere", {{"x", "0.5"}}),
-      pair("tori", "two tori, one moved along its ring's radius, rotated independently: operands with holes",
-           "torus", {{"x", "0.6"}, {"y", "0.2"}}),
-      pair("cylinders", "two cylinders, rotated independently across each other: flat caps and long side faces",
-           "cylinder", {{"x", "0.3"}, {"y", "0.2"}}),
-      pair("polytopes", "two random convex polytopes (independent planes), half a radius apart",
-           "convex-polytope", {{"x", "0.5"}}),
-      pair("hollow-boxes", "two cubes with cavities, moved along the diagonal: non-convex, cavities overlap",
-           "hollow-box", {{"x", "0.4"}, {"y", "0.3"}, {"z", "0.2"}}),
-      pair("sponges", "two level-2 Menger sponges (1,056 quads each) moved off the voxel grid: tunnels, coplanar faces",
-           "menger-sponge", {{"x", "0.35"}, {"y", "0.25"}, {"z", "0.15"}, {"level", "2"}}),
+  return {
+      pair("spheres", "sphere", {{"x", "0.5"}}),
+      pair("tori", "torus", {{"x", "0.6"}, {"y", "0.2"}}),
+      pair("cylinders", "cylinder", {{"x", "0.3"}, {"y", "0.2"}}),
+      pair("polytopes", "convex-polytope", {{"x", "0.5"}}),
+      pair("hollow-boxes", "hollow-box", {{"x", "0.4"}, {"y", "0.3"}, {"z", "0.2"}}),
+      pair("sponges", "menger-sponge", {{"x", "0.35"}, {"y", "0.25"}, {"z", "0.15"}, {"level", "2"}}, {{"level", "2"}},
+           false),
   };
-  pairs.back().first_placement = {{"level", "2"}};
-  for (auto& p : pairs) p = with_sizes(std::move(p));
-  // The sponge's `n` is declared but unused: its level sets the count.
-  pairs.back().sized = false;
-  return pairs;
 }
 
 SolidOperand operand(const std::string& scene, const ParamAssignments& placement, bool sized, std::uint64_t n,

@@ -23,7 +23,6 @@ struct SolidOperand {
 
 struct SolidPairInfo {
   std::string name;
-  std::string purpose;  // one line: what the pair exercises
   std::string first, second;          // generators
   ParamAssignments first_placement, second_placement;  // fixed parameters (position, level, ...)
   bool sized = true;  // false: n is not used and the pair has one size

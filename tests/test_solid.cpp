@@ -5,6 +5,8 @@
 #include <pthread.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "cli_runner.h"
 #include "common/errors.h"
 #include "solid/boundary.h"
+#include "solid/cells.h"
 #include "solid/merge.h"
 #include "solid/solid_build.h"
 #include "solid/view_cull.h"
@@ -482,4 +485,54 @@ TEST(MergeCli, SelfIntersectingMeshIsRefused) {
 }
 
 }  // namespace
+
+namespace {
+
+// Every directed edge of a cell's faces, by exact coordinates, has its reverse in another face.
+bool closed_cell(const Cell& cell) {
+  std::map<std::pair<std::array<double, 3>, std::array<double, 3>>, int> balance;
+  const auto key = [](const Vec3& p) { return std::array<double, 3>{p.x, p.y, p.z}; };
+  for (std::uint32_t i = 0; i < cell.faces.size(); ++i) {
+    const auto loop = cell.faces[i];
+    for (std::size_t k = 0; k < loop.size(); ++k) {
+      const Vec3 &p = loop[k], &q = loop[(k + 1) % loop.size()];
+      if (p == q) continue;
+      ++balance[{key(p), key(q)}];
+      --balance[{key(q), key(p)}];
+    }
+  }
+  return std::all_of(balance.begin(), balance.end(), [](const auto& e) { return e.second == 0; });
+}
+
+}  // namespace
+
+// A cell cut by a plane in general position, through a vertex, along an edge and a hair off a
+// vertex: both parts are closed polytopes (their caps chain from the faces' chords), the caps face
+// out of their parts, and the volumes add up to the cell's.
+TEST(CellSplit, GeneralVertexEdgeAndNearVertexPlanesGiveTwoClosedPartsThatTileTheCell) {
+  const Cell cell = box_cell({{-1, -1, -1}, {1, 1, 1}});
+  const std::vector<Plane> planes = {
+      Plane::through(normalize(Vec3{0.3, 0.5, 0.8}), {0.1, 0.0, 0.2}),
+      Plane::through(normalize(Vec3{1, 1, 1}), {1, 1, -1}),           // through the vertex (1,1,-1)
+      Plane::through(normalize(Vec3{1, 1, 0}), {1, -1, 0}),           // along the edge x = 1, y = -1
+      Plane::through(normalize(Vec3{1, 2, 3}), {1, 1, 1 - 1e-12}),    // a hair below the vertex (1,1,1)
+  };
+  for (const Plane& plane : planes) {
+    SCOPED_TRACE(::testing::Message() << plane.n.x << " " << plane.n.y << " " << plane.n.z << " " << plane.d);
+    Cell front, back;
+    split_cell(cell, plane, 0, front, back);
+    ASSERT_FALSE(front.outward.empty());
+    ASSERT_FALSE(back.outward.empty());
+    EXPECT_TRUE(closed_cell(front));
+    EXPECT_TRUE(closed_cell(back));
+    EXPECT_NEAR(cell_volume(front) + cell_volume(back), cell_volume(cell), 1e-12 * cell_volume(cell));
+    EXPECT_GT(cell_volume(front), 0);
+    EXPECT_GT(cell_volume(back), 0);
+    // The cap is the last face of each part; it faces out of its part: along the plane's normal
+    // for the back part, against it for the front.
+    EXPECT_GT(dot(newell_normal(back.faces[back.faces.size() - 1]), plane.n), 0);
+    EXPECT_LT(dot(newell_normal(front.faces[front.faces.size() - 1]), plane.n), 0);
+  }
+}
+
 }  // namespace bsp

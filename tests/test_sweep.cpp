@@ -588,6 +588,15 @@ TEST(SweepReport, ReadingRejectsOtherSchemasVersionsAndDamagedRecords) {
   other = tiny_report();
   other["runs"][0].erase("metrics");
   EXPECT_THROW(write_and_read(other), InputError);
+  other = tiny_report();
+  other["runs"][0]["id"]["kind"] = 3;
+  EXPECT_THROW(write_and_read(other), InputError);
+  EXPECT_NO_THROW(write_and_read(tiny_merge_report()));
+  for (const char* damage : {"operation", "operands"}) {
+    other = tiny_merge_report();
+    other["runs"][0]["id"].erase(damage);
+    EXPECT_THROW(write_and_read(other), InputError) << damage;
+  }
   std::ofstream(dir / "r.json") << "{not json";
   EXPECT_THROW(read_report((dir / "r.json").string()), InputError);
   EXPECT_THROW(read_report((dir / "missing.json").string()), InputError);

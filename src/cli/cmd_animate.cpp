@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "cli/run_args.h"
 #include "dynamic/updater.h"
+#include "split/registry.h"
 #include "metrics/statistics.h"
 #include "metrics/traversal_cost.h"
 #include "validate/order_check.h"
@@ -118,11 +119,11 @@ int run(Args& args) {
   const bool json = args.flag("--json");
   const auto seed = static_cast<std::uint64_t>(args.integer("--seed", 0, 9'000'000'000'000'000LL).value_or(1));
   AnimationSpec spec = spec_from(args, seed);
-  UpdaterSettings settings;
-  settings.heuristic = args.option("--heuristic").value_or(settings.heuristic);
-  for (const auto& kv : args.options("--param")) settings.params.push_back(parse_assignment(kv));
-  settings.seed = seed;
-  settings.build = build_options_from(args, seed);
+  const std::string heuristic = args.option("--heuristic").value_or("crystal");
+  ParamAssignments params;
+  for (const auto& kv : args.options("--param")) params.push_back(parse_assignment(kv));
+  BuildOptions build;
+  build.shape = shape_from(args);
   const std::string strategy = args.option("--strategy").value_or("rebuild");
   ValidationSettings views;
   views.views = static_cast<int>(args.integer("--views", 0, kMaxViews).value_or(2));
@@ -130,20 +131,23 @@ int run(Args& args) {
   args.finish();
 
   const Animation animation(spec);
-  auto updater = make_updater(strategy, settings);
-  const Scene& still = animation.static_scene();
-  const std::vector<Frustum> cost_views = metric_views(bounds(still), kCostViews);
+  auto updater = make_updater(strategy, make_splitter(heuristic, params, seed), build);
+  // The static polygons as every frame numbers them (Animation::frame), so the invariants' per-source
+  // checks compare like with like.
+  const Scene first = animation.frame(0);
+  const std::span<const Polygon> still(first.polygons.data(), animation.static_scene().polygons.size());
+  const std::vector<Frustum> cost_views = metric_views(bounds(animation.static_scene()), kCostViews);
   std::vector<FrameRecord> frames;
   for (std::uint32_t f = 0; f < spec.frames; ++f) {
-    const std::vector<Polygon> moving = animation.moving_at(f, static_cast<std::uint32_t>(still.polygons.size()));
-    const UpdateWork work = f == 0 ? updater->start(still.polygons, moving, spec.moving) : updater->update(moving);
+    const std::vector<Polygon> moving = animation.moving_at(f, static_cast<std::uint32_t>(still.size()));
+    const UpdateWork work = f == 0 ? updater->start(still, moving, spec.moving) : updater->update(moving);
     const Scene input = animation.frame(f);
     frames.push_back(
         check_frame(*updater, work, input.polygons, f % every == 0 || f + 1 == spec.frames, views, cost_views));
   }
   nlohmann::json out = {{"animation", animation.describe()},
                         {"strategy", strategy},
-                        {"heuristic", settings.heuristic},
+                        {"heuristic", heuristic},
                         {"views", views.views},
                         {"check_every", every},
                         {"summary", summary(frames)}};

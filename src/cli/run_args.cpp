@@ -71,11 +71,15 @@ TreeArgs tree_args_from(Args& args, std::uint64_t seed) {
   return t;
 }
 
-BuildOptions build_options_from(Args& args, std::uint64_t seed) {
-  BuildOptions options;
+Shape shape_from(Args& args) {
   const std::string shape = args.option("--shape").value_or("strict");
   if (shape != "strict" && shape != "coarse") throw UsageError("--shape must be strict or coarse, not '" + shape + "'");
-  options.shape = shape == "coarse" ? Shape::Coarse : Shape::Strict;
+  return shape == "coarse" ? Shape::Coarse : Shape::Strict;
+}
+
+BuildOptions build_options_from(Args& args, std::uint64_t seed) {
+  BuildOptions options;
+  options.shape = shape_from(args);
   options.incremental = args.flag("--incremental");
   const auto order = args.option("--order");
   if (order && !options.incremental) throw UsageError("--order applies to --incremental builds");

@@ -51,6 +51,8 @@ TreeArgs tree_args_from(Args& args, std::uint64_t seed);
 // that does not name a heuristic, for commands that run several).
 BuildOptions build_options_from(Args& args, std::uint64_t seed);
 Tree build_from_args(const Scene& scene, const TreeArgs& t);
+// --shape strict|coarse alone (default strict), for commands whose builds are never incremental.
+Shape shape_from(Args& args);
 // A catalog scene or mesh:NAME with "k=v" parameters, else a mesh file (which takes none: a
 // UsageError naming `option`); checked with check_scene.
 Scene scene_or_file(const std::string& spec, const std::vector<std::string>& params, std::string_view option);

@@ -2,8 +2,6 @@
 
 #include <ctime>
 
-#include "split/registry.h"
-
 namespace bsp {
 
 namespace {
@@ -16,9 +14,8 @@ double thread_cpu() {
 
 }  // namespace
 
-RebuildUpdater::RebuildUpdater(UpdaterSettings settings) : settings_(std::move(settings)) {
-  make_splitter(settings_.heuristic, settings_.params, settings_.seed);  // reject a bad name now
-}
+RebuildUpdater::RebuildUpdater(std::unique_ptr<Splitter> splitter, const BuildOptions& build)
+    : splitter_(std::move(splitter)), build_(build) {}
 
 UpdateWork RebuildUpdater::start(std::span<const Polygon> static_polys, std::span<const Polygon> moving,
                                  std::size_t) {
@@ -31,9 +28,10 @@ UpdateWork RebuildUpdater::update(std::span<const Polygon> moving) {
   input_.resize(static_count_);
   input_.insert(input_.end(), moving.begin(), moving.end());
   const double start = thread_cpu();
-  // A fresh splitter per frame: each frame's tree is the one a plain build of that frame gives.
-  auto splitter = make_splitter(settings_.heuristic, settings_.params, settings_.seed);
-  tree_ = build_tree(input_, *splitter, settings_.build);
+  // A fresh clone per frame, whatever state a splitter keeps: each frame's tree is the plain build
+  // of that frame.
+  const std::unique_ptr<Splitter> splitter = splitter_->clone();
+  tree_ = build_tree(input_, *splitter, build_);
   return {thread_cpu() - start, input_.size()};
 }
 

@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "common/params.h"
 #include "geometry/polygon.h"
+#include "split/splitter.h"
 #include "tree/build.h"
 #include "tree/tree.h"
 
@@ -37,17 +37,10 @@ class Updater {
   virtual const Tree& tree() const = 0;
 };
 
-// How every strategy builds: the heuristic by name with its parameters and seed, and the tree shape.
-struct UpdaterSettings {
-  std::string heuristic = "crystal";
-  ParamAssignments params;
-  std::uint64_t seed = 1;
-  BuildOptions build;
-};
-
-// The strategies by name; throws UsageError naming the known ones for another name, and what
-// make_splitter throws for a bad heuristic or parameter.
-std::unique_ptr<Updater> make_updater(std::string_view strategy, const UpdaterSettings& settings);
+// The strategies by name, each building with `splitter` (the caller picks the heuristic) and
+// `build`; throws UsageError naming the known strategies for another name.
+std::unique_ptr<Updater> make_updater(std::string_view strategy, std::unique_ptr<Splitter> splitter,
+                                      const BuildOptions& build = {});
 std::vector<std::string> updater_names();
 
 }  // namespace bsp

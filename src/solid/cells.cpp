@@ -36,9 +36,10 @@ struct CapEdges {
   bool consistent = true;
 };
 
-void face_cap_edges(std::span<const Vec3> loop, const Plane& plane, CapEdges& out) {
+// `d` is scratch for the vertices' distances, reused across faces.
+void face_cap_edges(std::span<const Vec3> loop, const Plane& plane, std::vector<double>& d, CapEdges& out) {
   const std::size_t m = loop.size();
-  std::vector<double> d(m);
+  d.resize(m);
   bool any_front = false, any_back = false;
   for (std::size_t k = 0; k < m; ++k) {
     d[k] = plane.distance(loop[k]);
@@ -148,13 +149,14 @@ void split_cell(const Cell& cell, const Plane& plane, Ref node, Cell& front, Cel
     return;
   }
   std::vector<Vec3> f, b;
+  std::vector<double> distances;
   CapEdges edges;
   for (std::uint32_t i = 0; i < cell.faces.size(); ++i) {
     const std::span<const Vec3> loop = cell.faces[i];
     split_loop(loop, plane, 0.0, f, b);
     if (!f.empty()) front.faces.add(f), front.outward.push_back(cell.outward[i]), front.cut_by.push_back(cell.cut_by[i]);
     if (!b.empty()) back.faces.add(b), back.outward.push_back(cell.outward[i]), back.cut_by.push_back(cell.cut_by[i]);
-    face_cap_edges(loop, plane, edges);
+    face_cap_edges(loop, plane, distances, edges);
   }
   std::vector<Vec3> back_cap = edges.consistent ? chain(edges.back) : std::vector<Vec3>{};
   std::vector<Vec3> front_cap = edges.consistent ? chain(edges.front) : std::vector<Vec3>{};

@@ -65,7 +65,8 @@ std::vector<Job> shard_jobs(const std::vector<Job>& jobs, Shard s);
 // exactly when these agree.
 std::string definition_hash(const std::string& suite_name, const std::vector<Job>& jobs);
 
-// {scene, scene_params, heuristic, heuristic_params, build, shape, seed, n, validation_views}: the identity
+// {kind: "draw", scene, scene_params, constant_density, heuristic, heuristic_params, build, shape, seed, n,
+// validation_views}: the identity
 // printed in reports and regression tables, with the `bspbench build` command that rebuilds the tree.
 // A merge job's adds kind "merge", operation, points and operands (each scene with its resolved
 // parameters), and its command is the `bspbench merge` that repeats the run.

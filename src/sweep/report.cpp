@@ -60,12 +60,21 @@ bool has_labels(const nlohmann::json& id, bool optional) {
   return true;
 }
 
+// A drawing run, or a merge run with its operation and two operands.
+bool has_kind(const nlohmann::json& id) {
+  if (!has(id, "kind", &nlohmann::json::is_string)) return false;
+  if (id["kind"] == "draw") return true;
+  return id["kind"] == "merge" && has(id, "operation", &nlohmann::json::is_string) &&
+         has(id, "operands", &nlohmann::json::is_array) && id["operands"].size() == 2;
+}
+
 // What aggregation, merging and the regression gate read from a run record.
 bool is_run(const nlohmann::json& r) {
   if (!is_record(r, {"id", "metrics", "invariants", "timings"}) || !r.contains("validation")) return false;
   const auto& id = r["id"];
   const auto& validation = r["validation"];
-  return has(r, "calibration_seconds", &nlohmann::json::is_number) && r["calibration_seconds"].get<double>() > 0 &&
+  return has_kind(id) && has(r, "calibration_seconds", &nlohmann::json::is_number) &&
+         r["calibration_seconds"].get<double>() > 0 &&
          has(id, "n", &nlohmann::json::is_number_unsigned) && has(id, "n_polygons", &nlohmann::json::is_number) &&
          has(id, "scene_params", &nlohmann::json::is_object) && has_labels(id, false) &&
          has(r["invariants"], "violations", &nlohmann::json::is_number_unsigned, true) &&
@@ -91,8 +100,9 @@ void check_layout(const nlohmann::json& report, const std::string& path) {
   if (!report["runs"].is_array() || !report["failures"].is_array()) bad("\"runs\" and \"failures\" must be arrays");
   for (const auto& r : report["runs"])
     if (!is_run(r))
-      bad("a run record lacks key, id (scene, heuristic, shape, n, n_polygons, scene_params), metrics, invariants, "
-          "validation, timings or calibration_seconds, or one has the wrong type");
+      bad("a run record lacks key, id (kind, scene, heuristic, shape, n, n_polygons, scene_params; a merge run's "
+          "operation and two operands), metrics, invariants, validation, timings or calibration_seconds, or one has "
+          "the wrong type");
   for (const auto& f : report["failures"])
     if (!is_failure(f)) bad("a failure record lacks key or id, or one has the wrong type");
 }
