@@ -64,14 +64,17 @@ nlohmann::json run_tiny(const Suite& suite, const fs::path& dir, int threads, st
   return run_sweep(suite, o);
 }
 
+// A sweep of `suite` on 2 threads in a scratch directory, removed afterwards.
+nlohmann::json sweep_once(const Suite& suite) {
+  const fs::path dir = fs::temp_directory_path() / ("bspbench_sweep_" + suite.name + "_" + std::to_string(::getpid()));
+  nlohmann::json r = run_tiny(suite, dir, 2);
+  fs::remove_all(dir);
+  return r;
+}
+
 // One tiny sweep shared by the gate tests (they only read it).
 const nlohmann::json& tiny_report() {
-  static const nlohmann::json report = [] {
-    const fs::path dir = fs::temp_directory_path() / ("bspbench_sweep_tiny_" + std::to_string(::getpid()));
-    nlohmann::json r = run_tiny(tiny_suite(), dir, 2);
-    fs::remove_all(dir);
-    return r;
-  }();
+  static const nlohmann::json report = sweep_once(tiny_suite());
   return report;
 }
 
@@ -82,12 +85,7 @@ Suite tiny_merge_suite() {
 }
 
 const nlohmann::json& tiny_merge_report() {
-  static const nlohmann::json report = [] {
-    const fs::path dir = fs::temp_directory_path() / ("bspbench_sweep_tiny_merge_" + std::to_string(::getpid()));
-    nlohmann::json r = run_tiny(tiny_merge_suite(), dir, 2);
-    fs::remove_all(dir);
-    return r;
-  }();
+  static const nlohmann::json report = sweep_once(tiny_merge_suite());
   return report;
 }
 

@@ -139,9 +139,9 @@ int run(Args& args) {
   const std::vector<Frustum> cost_views = metric_views(bounds(animation.static_scene()), kCostViews);
   std::vector<FrameRecord> frames;
   for (std::uint32_t f = 0; f < spec.frames; ++f) {
-    const std::vector<Polygon> moving = animation.moving_at(f, static_cast<std::uint32_t>(still.size()));
-    const UpdateWork work = f == 0 ? updater->start(still, moving, spec.moving) : updater->update(moving);
     const Scene input = animation.frame(f);
+    const auto moving = std::span<const Polygon>(input.polygons).subspan(still.size());
+    const UpdateWork work = f == 0 ? updater->start(still, moving, spec.moving) : updater->update(moving);
     frames.push_back(
         check_frame(*updater, work, input.polygons, f % every == 0 || f + 1 == spec.frames, views, cost_views));
   }

@@ -1,18 +1,8 @@
 #include "dynamic/rebuild.h"
 
-#include <ctime>
+#include "common/cpu_time.h"
 
 namespace bsp {
-
-namespace {
-
-double thread_cpu() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
 
 RebuildUpdater::RebuildUpdater(std::unique_ptr<Splitter> splitter, const BuildOptions& build)
     : splitter_(std::move(splitter)), build_(build) {}
@@ -27,12 +17,12 @@ UpdateWork RebuildUpdater::start(std::span<const Polygon> static_polys, std::spa
 UpdateWork RebuildUpdater::update(std::span<const Polygon> moving) {
   input_.resize(static_count_);
   input_.insert(input_.end(), moving.begin(), moving.end());
-  const double start = thread_cpu();
+  const double start = thread_cpu_seconds();
   // A fresh clone per frame, whatever state a splitter keeps: each frame's tree is the plain build
   // of that frame.
   const std::unique_ptr<Splitter> splitter = splitter_->clone();
   tree_ = build_tree(input_, *splitter, build_);
-  return {thread_cpu() - start, input_.size()};
+  return {thread_cpu_seconds() - start, input_.size()};
 }
 
 }  // namespace bsp

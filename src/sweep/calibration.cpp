@@ -1,7 +1,5 @@
 #include "sweep/calibration.h"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
@@ -44,12 +42,6 @@ Calibration calibrate() {
 
 nlohmann::json to_json(const Calibration& c) {
   return {{"kernel", calibration_kernel_description()}, {"seconds", c.seconds}, {"checksum", c.checksum}};
-}
-
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 std::string calibration_kernel_description() {

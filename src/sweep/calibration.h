@@ -11,6 +11,8 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "common/cpu_time.h"
+
 namespace bsp::sweep {
 
 struct Calibration {
@@ -23,8 +25,5 @@ Calibration calibrate();
 nlohmann::json to_json(const Calibration& c);
 // What the kernel does, stored in reports beside its time.
 std::string calibration_kernel_description();
-
-// CPU time consumed so far by the calling thread (CLOCK_THREAD_CPUTIME_ID).
-double thread_cpu_seconds();
 
 }  // namespace bsp::sweep
