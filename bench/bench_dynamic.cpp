@@ -42,7 +42,8 @@ void bm_update(benchmark::State& state, std::string strategy, AnimationSpec spec
   const auto first = static_cast<std::uint32_t>(still.size());
   std::vector<std::vector<Polygon>> frames;
   for (std::uint32_t f = 0; f < kFrames; ++f) frames.push_back(animation.moving_at(f, first));
-  auto updater = make_updater(strategy, make_splitter(heuristic, {}, kSeed));
+  auto updater = make_updater(strategy, make_splitter(heuristic, {}, kSeed),
+                              make_splitter(strategy == "torres" ? "halving" : heuristic, {}, kSeed));
   updater->start(still, frames[0], spec.moving);
   std::vector<double> times;
   std::uint32_t f = 0;

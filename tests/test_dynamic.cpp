@@ -1,7 +1,10 @@
 // Animated scenes and the dynamic-scene updaters: frames are a deterministic function of the spec,
 // objects stay in the static box and advance exactly `speed` diagonals per frame along their
 // paths, adding an object moves no other, bad specs are refused; rebuild's tree of every frame is
-// the plain build of that frame and passes the invariants and the Embree order check.
+// the plain build of that frame and passes the invariants and the Embree order check; so does every
+// frame of every other strategy, bit for bit the same on a second run. reinsert-each repairs every
+// frame where reinsert repairs only once; merge never edits the static tree; torres moves objects
+// that stay in their cells in place.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +12,7 @@
 
 #include "animation.h"
 #include "common/errors.h"
+#include "dynamic/object_tree.h"
 #include "dynamic/updater.h"
 #include "split/registry.h"
 #include "validate/order_check.h"
@@ -97,7 +101,7 @@ TEST(Animation, OpenObjectsAndValuesOutOfRangeAreRefused) {
   refused([](AnimationSpec& s) { s.size = 0; });
   refused([](AnimationSpec& s) { s.speed = -0.1; });
   refused([](AnimationSpec& s) { s.moving = 1001; });
-  EXPECT_THROW(make_updater("teleport", make_splitter("first", {}, 1)), UsageError);
+  EXPECT_THROW(make_updater("teleport", make_splitter("first", {}, 1), make_splitter("first", {}, 1)), UsageError);
 }
 
 bool same_tree(const Tree& a, const Tree& b) {
@@ -119,7 +123,7 @@ bool same_tree(const Tree& a, const Tree& b) {
 // show.
 TEST(RebuildUpdater, EveryFrameIsThePlainBuildAndPassesTheChecks) {
   const Animation a(small_spec());
-  auto u = make_updater("rebuild", make_splitter("random", {}, 7));
+  auto u = make_updater("rebuild", make_splitter("random", {}, 7), make_splitter("random", {}, 7));
   const Scene frame0 = a.frame(0);
   const std::span<const Polygon> still(frame0.polygons.data(), a.static_scene().polygons.size());
   const auto first = static_cast<std::uint32_t>(still.size());
@@ -135,4 +139,159 @@ TEST(RebuildUpdater, EveryFrameIsThePlainBuildAndPassesTheChecks) {
     EXPECT_EQ(check_tree_invariants(u->tree(), scene.polygons).violations, 0u) << f;
     EXPECT_EQ(validate_tree(u->tree(), views).violations, 0u) << f;
   }
+}
+
+namespace {
+
+struct StrategyRun {
+  std::vector<Tree> trees;       // every frame's
+  std::vector<UpdateWork> work;  // every frame's (frame 0: start)
+};
+
+StrategyRun run_strategy(const AnimationSpec& spec, const std::string& strategy, const std::string& heuristic,
+                         bool check) {
+  const Animation a(spec);
+  auto u = make_updater(strategy, make_splitter(heuristic, {}, 5),
+                        make_splitter(strategy == "torres" ? "halving" : heuristic, {}, 5));
+  const Scene frame0 = a.frame(0);
+  const std::span<const Polygon> still(frame0.polygons.data(), a.static_scene().polygons.size());
+  ValidationSettings views;
+  views.views = 2;
+  StrategyRun run;
+  for (std::uint32_t f = 0; f < spec.frames; ++f) {
+    const Scene scene = a.frame(f);
+    const auto moving = std::span<const Polygon>(scene.polygons).subspan(still.size());
+    run.work.push_back(f == 0 ? u->start(still, moving, spec.moving) : u->update(moving));
+    run.trees.push_back(u->tree());
+    if (!check) continue;
+    const InvariantReport inv = check_tree_invariants(u->tree(), scene.polygons);
+    EXPECT_EQ(inv.violations, 0u) << strategy << " " << heuristic << " frame " << f << ": "
+                                  << (inv.first_problems.empty() ? "" : inv.first_problems[0]);
+    EXPECT_EQ(validate_tree(u->tree(), views).violations, 0u) << strategy << " " << heuristic << " frame " << f;
+  }
+  return run;
+}
+
+const std::vector<std::string> kTreeKeeping = {"reinsert", "reinsert-each", "merge", "torres"};
+
+}  // namespace
+
+TEST(DynamicStrategies, EveryFrameOfEveryStrategyPassesTheChecks) {
+  AnimationSpec s = small_spec();
+  s.frames = 8;
+  for (const auto& strategy : kTreeKeeping)
+    for (const std::string heuristic : {"crystal", "naylor", "random"}) run_strategy(s, strategy, heuristic, true);
+}
+
+// Objects crossing each other and the static geometry at close range: many objects, fast.
+TEST(DynamicStrategies, CrowdedFastObjectsPassTheChecks) {
+  AnimationSpec s = small_spec();
+  s.scene = "city";
+  s.moving = 12;
+  s.object_n = 24;
+  s.size = 0.06;
+  s.speed = 0.03;
+  s.frames = 10;
+  for (const auto& strategy : kTreeKeeping) run_strategy(s, strategy, "crystal", true);
+}
+
+TEST(DynamicStrategies, ASecondRunGivesTheSameTreesBitForBit) {
+  for (const auto& strategy : kTreeKeeping) {
+    const StrategyRun a = run_strategy(small_spec(), strategy, "random", false);
+    const StrategyRun b = run_strategy(small_spec(), strategy, "random", false);
+    for (std::size_t f = 0; f < a.trees.size(); ++f) EXPECT_TRUE(same_tree(a.trees[f], b.trees[f])) << strategy << f;
+  }
+}
+
+TEST(DynamicStrategies, CoarseTreesAndIncrementalBuildsAreRefused) {
+  BuildOptions coarse;
+  coarse.shape = Shape::Coarse;
+  BuildOptions incremental;
+  incremental.incremental = true;
+  for (const auto& strategy : kTreeKeeping)
+    for (const BuildOptions& o : {coarse, incremental})
+      EXPECT_THROW(make_updater(strategy, make_splitter("first", {}, 1), make_splitter("first", {}, 1), o), UsageError);
+}
+
+// The first frame's tree is one build of everything, so objects' planes sit above static
+// fragments: the first update repairs. Afterwards reinsert (all objects out, then all in) never
+// repairs; reinsert-each puts each object back below the nodes of objects still to come out.
+TEST(ReinsertUpdater, RemovedNodesWithTwoNonEmptySubtreesAreRepaired) {
+  AnimationSpec s = small_spec();
+  s.scene = "city";
+  s.moving = 8;
+  s.frames = 5;
+  const StrategyRun all = run_strategy(s, "reinsert", "crystal", true);
+  const StrategyRun each = run_strategy(s, "reinsert-each", "crystal", true);
+  EXPECT_GT(all.work[1].repairs, 0u);
+  EXPECT_GT(all.work[1].reinserted_fragments, 0u);
+  std::uint64_t later_all = 0, later_each = 0;
+  for (std::size_t f = 2; f < all.work.size(); ++f) {
+    later_all += all.work[f].repairs;
+    later_each += each.work[f].repairs;
+  }
+  EXPECT_EQ(later_all, 0u);
+  EXPECT_GT(later_each, 0u);
+}
+
+// The static polygons' fragments, in traversal order: merge must leave them exactly as built.
+std::vector<std::vector<Vec3>> static_fragments(const Tree& t, std::uint32_t static_count) {
+  std::vector<std::vector<Vec3>> out;
+  for (std::size_t f = 0; f < t.fragments.size(); ++f)
+    if (t.fragments[f].source < static_count) {
+      const auto p = t.fragments.points(f);
+      out.emplace_back(p.begin(), p.end());
+    }
+  return out;
+}
+
+TEST(MergeUpdater, NeverEditsTheStaticTree) {
+  const Animation a(small_spec());
+  const auto statics = static_cast<std::uint32_t>(a.static_scene().polygons.size());
+  const StrategyRun run = run_strategy(small_spec(), "merge", "crystal", false);
+  for (std::size_t f = 1; f < run.trees.size(); ++f) {
+    EXPECT_EQ(static_fragments(run.trees[f], statics), static_fragments(run.trees[0], statics)) << f;
+    EXPECT_EQ(run.work[f].polygons_built, 0u);
+    EXPECT_EQ(run.work[f].objects_placed, small_spec().moving);
+  }
+  // The comparison sees edits: reinsert's first update repairs, splitting static fragments.
+  const StrategyRun edited = run_strategy(small_spec(), "reinsert", "crystal", false);
+  ASSERT_GT(edited.work[1].repairs, 0u);
+  EXPECT_NE(static_fragments(edited.trees[1], statics), static_fragments(edited.trees[0], statics));
+}
+
+// Small slow objects in a sparse scene stay in their cells: torres moves them in place, and those
+// frames still pass every check (run_strategy checks them).
+TEST(TorresUpdater, ObjectsThatStayInTheirCellsMoveInPlace) {
+  AnimationSpec s = small_spec();
+  s.scene_params = {{"n", "60"}};
+  s.size = 0.01;
+  s.speed = 0.002;
+  s.frames = 10;
+  const StrategyRun run = run_strategy(s, "torres", "crystal", true);
+  std::uint64_t moved = 0, placed = 0;
+  for (std::size_t f = 1; f < run.work.size(); ++f) {
+    moved += run.work[f].moved_nodes;
+    placed += run.work[f].objects_placed;
+  }
+  EXPECT_GT(moved, 0u);
+  EXPECT_LT(placed, s.moving * (s.frames - 1));
+}
+
+TEST(RigidMotion, RecoversARotationAndATranslationFromThreePoints) {
+  const Vec3 a[3] = {{0.3, -1, 2}, {1.7, 0.2, 2.5}, {-0.4, 0.9, 1.1}};
+  const Vec3 axis = normalize(Vec3{1, 2, -0.5});
+  const double angle = 0.7;
+  const auto turn = [&](const Vec3& p) {  // Rodrigues
+    return p * std::cos(angle) + cross(axis, p) * std::sin(angle) + axis * dot(axis, p) * (1 - std::cos(angle));
+  };
+  const Vec3 shift{5, -3, 0.25};
+  const Vec3 b[3] = {turn(a[0]) + shift, turn(a[1]) + shift, turn(a[2]) + shift};
+  const RigidMotion m = motion_between(a, b);
+  const Vec3 q{-2, 4, 7};
+  EXPECT_LT(length(m.apply(q) - (turn(q) + shift)), 1e-12);
+  const Plane p = Plane::through(Vec3{0.2, 0.3, 1}, q);
+  const Plane moved = m.apply(p);
+  EXPECT_LT(std::abs(moved.distance(turn(q) + shift)), 1e-12);
+  EXPECT_LT(length(moved.n - turn(p.n)), 1e-12);
 }

@@ -6,6 +6,13 @@
 // moving ones at their new places, valid for any eye.
 //
 // rebuild: a full build per frame, the baseline every other strategy is measured against.
+// reinsert, reinsert-each: remove the moving objects and insert them again [ChrysanthouSlater1992]
+//   (reinsert.h: all removed first, or one object at a time).
+// merge: merge the objects' own trees into the untouched static tree [Naylor1990] (object_merge.h).
+// torres: objects' own trees in the static tree's cells, kept apart by separating planes, moved in
+//   place while they stay in their cells [Torres1990] (torres.h).
+// All but rebuild keep a mutable tree (dynamic_tree.h) and build strict trees only; tree() is then
+// a snapshot taken outside the timed update.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -13,18 +20,13 @@
 #include <string_view>
 #include <vector>
 
+#include "dynamic/update_work.h"
 #include "geometry/polygon.h"
 #include "split/splitter.h"
 #include "tree/build.h"
 #include "tree/tree.h"
 
 namespace bsp {
-
-// What one update did. Strategies that do less than a full build count their work here.
-struct UpdateWork {
-  double seconds = 0;                  // thread CPU seconds of the update
-  std::uint64_t polygons_built = 0;    // polygons given to a build (all of them for rebuild)
-};
 
 class Updater {
  public:
@@ -38,9 +40,10 @@ class Updater {
 };
 
 // The strategies by name, each building with `splitter` (the caller picks the heuristic) and
-// `build`; throws UsageError naming the known strategies for another name.
+// `build`; merge and torres build the objects' own trees with `object_splitter`. Throws UsageError
+// naming the known strategies for another name, and for options a strategy cannot honour.
 std::unique_ptr<Updater> make_updater(std::string_view strategy, std::unique_ptr<Splitter> splitter,
-                                      const BuildOptions& build = {});
+                                      std::unique_ptr<Splitter> object_splitter, const BuildOptions& build = {});
 std::vector<std::string> updater_names();
 
 }  // namespace bsp

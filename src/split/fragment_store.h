@@ -65,6 +65,7 @@ class FragmentStore {
   FragmentView view(std::uint32_t id) const;
   std::span<const Vec3> points(std::uint32_t id) const { return {pos_.data() + span_[id].first, span_[id].count}; }
   std::uint32_t plane(std::uint32_t id) const { return plane_[id]; }
+  std::uint32_t source(std::uint32_t id) const { return source_[id]; }
   const BoundingSphere& sphere(std::uint32_t id) const { return sphere_[id]; }
   std::size_t vertices_live() const { return live_vertices_; }
   std::size_t vertex_slots() const { return pos_.size(); }  // stored vertices, freed spans included

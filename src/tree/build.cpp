@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "common/rng.h"
@@ -219,7 +220,9 @@ class RecursiveBuilder {
 
   // Splits a spanning fragment; returns the ids of its kept front and back parts (kNone if dropped).
   std::pair<std::uint32_t, std::uint32_t> split_fragment(std::uint32_t id, const Plane& plane) {
+    const std::uint32_t source = store_.source(id);
     const FragmentStore::Parts r = store_.split(id, plane, tree_.tol.plane_eps);
+    if (tree_.log_splits) tree_.split_log.push_back({source, static_cast<std::uint32_t>(r.dropped), r.dropped_area});
     ++tree_.stats.splits;
     tree_.stats.dropped_slivers += r.dropped;
     tree_.stats.dropped_area += r.dropped_area;
@@ -407,6 +410,13 @@ Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildO
   Tree tree = freeze(std::move(draft));
   tree.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return tree;
+}
+
+void build_subtree(TreeDraft& draft, Splitter& splitter, std::vector<std::uint32_t> ids,
+                   std::vector<std::uint32_t> cell_prefix, std::uint32_t depth, std::uint64_t key) {
+  if (!draft.nodes.empty() || ids.empty())
+    throw std::logic_error("build_subtree needs an empty draft and at least one fragment");
+  RecursiveBuilder(draft, splitter, std::move(cell_prefix), nullptr).run(WorkItem{std::move(ids), kNull, true, depth, key});
 }
 
 Tree build_incremental_tree(std::span<const Polygon> input, const BuildOptions& options) {

@@ -5,9 +5,11 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "geometry/polygon.h"
 #include "split/splitter.h"
+#include "tree/draft.h"
 #include "tree/tree.h"
 
 namespace bsp {
@@ -35,6 +37,14 @@ struct BuildOptions {
 // the input's bounding box. Deterministic: same input, splitter settings and seed, same tree, bit for
 // bit, on any number of threads. The splitter is cloned for each task and not itself changed.
 Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options = {});
+// One subtree of a tree that is edited after it is built (dynamic/): the fragments `ids` of
+// draft.store, built with draft's tolerance and bounds into draft.nodes, which must be empty and
+// receive the subtree in pre-order (its root first). `cell_prefix` holds the planes bounding the
+// subtree's cell, root first, each oriented so the cell is in front; `depth` and `key` are the
+// subtree root's depth and path key (SplitContext). Single-threaded; ids must not be empty.
+void build_subtree(TreeDraft& draft, Splitter& splitter, std::vector<std::uint32_t> ids,
+                   std::vector<std::uint32_t> cell_prefix, std::uint32_t depth, std::uint64_t key);
+
 // The heuristic label of an incremental build in every JSON: it consults no heuristic.
 inline constexpr std::string_view kIncrementalLabel = "incremental";
 

@@ -62,11 +62,11 @@ void load_one(const Polygon& poly, std::uint32_t source, double eps, Chunk& out)
 }
 
 // Adds a cleaned chunk to the store and its counters to the stats, in input order, and empties it.
-void pool_chunk(Chunk& c, TreeDraft& tree, std::vector<std::uint32_t>& ids) {
-  tree.stats.input_area += c.input_area;
-  tree.stats.dropped_area += c.dropped_area;
-  tree.stats.dropped_input += c.dropped_input;
-  tree.stats.triangulated_extra += c.triangulated_extra;
+void pool_chunk(Chunk& c, TreeDraft& tree, BuildStats& stats, std::vector<std::uint32_t>& ids) {
+  stats.input_area += c.input_area;
+  stats.dropped_area += c.dropped_area;
+  stats.dropped_input += c.dropped_input;
+  stats.triangulated_extra += c.triangulated_extra;
   for (const Part& p : c.parts) ids.push_back(tree.store.add(p.poly, tree.planes.add(p.plane), p.sphere));
   c = Chunk{};
 }
@@ -85,22 +85,28 @@ std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft&
   }
   tree.tol = Tolerance::for_extent(tree.bounds.diagonal());
   tree.stats.n_input = input.size();
-  const double eps = tree.tol.plane_eps;
-  std::vector<std::uint32_t> ids;
-  ids.reserve(input.size());
   tree.store = FragmentStore(tex_coords);
   tree.store.reserve(FragmentStore::kGrowthRoom * input.size(), FragmentStore::kGrowthRoom * vertices);
   tree.planes.reserve(input.size());
+  return add_input(input, 0, tree, tree.stats);
+}
+
+std::vector<std::uint32_t> add_input(std::span<const Polygon> input, std::uint32_t first_source, TreeDraft& tree,
+                                     BuildStats& stats) {
+  const double eps = tree.tol.plane_eps;
+  std::vector<std::uint32_t> ids;
+  ids.reserve(input.size());
   const std::size_t chunk_count = (input.size() + kLoadChunk - 1) / kLoadChunk;
   std::vector<Chunk> window(kLoadWindow);
   for (std::size_t first = 0; first < chunk_count; first += kLoadWindow) {
     const std::size_t count = std::min(kLoadWindow, chunk_count - first);
-#pragma omp parallel for schedule(dynamic, 1) default(none) shared(input, window, eps, first, count)
+#pragma omp parallel for schedule(dynamic, 1) default(none) shared(input, window, eps, first, count, first_source)
     for (std::size_t c = 0; c < count; ++c) {
       const std::size_t begin = (first + c) * kLoadChunk, end = std::min(input.size(), begin + kLoadChunk);
-      for (std::size_t i = begin; i < end; ++i) load_one(input[i], static_cast<std::uint32_t>(i), eps, window[c]);
+      for (std::size_t i = begin; i < end; ++i)
+        load_one(input[i], first_source + static_cast<std::uint32_t>(i), eps, window[c]);
     }
-    for (std::size_t c = 0; c < count; ++c) pool_chunk(window[c], tree, ids);
+    for (std::size_t c = 0; c < count; ++c) pool_chunk(window[c], tree, stats, ids);
   }
   return ids;
 }

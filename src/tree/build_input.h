@@ -15,4 +15,10 @@ namespace bsp {
 // input order (slivers dropped and non-planar polygons fan-triangulated).
 std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree);
 
+// The same for polygons added to a draft whose tolerance and store are already set: polygon i gets
+// source first_source + i, and the input counters add to `stats` (the caller's, which need not be
+// the draft's).
+std::vector<std::uint32_t> add_input(std::span<const Polygon> input, std::uint32_t first_source, TreeDraft& tree,
+                                     BuildStats& stats);
+
 }  // namespace bsp

@@ -19,6 +19,12 @@ struct DraftNode {
   std::uint32_t count = 0;
 };
 
+struct SplitRecord {
+  std::uint32_t source = 0;
+  std::uint32_t dropped = 0;  // parts dropped as slivers
+  double dropped_area = 0;
+};
+
 struct TreeDraft {
   PageVector<DraftNode> nodes;
   PlanePool planes;
@@ -29,6 +35,10 @@ struct TreeDraft {
   Tolerance tol;
   Box bounds;
   BuildStats stats;
+  // When set, every split a builder makes is logged with its fragment's source, so a caller whose
+  // sources belong to groups (dynamic/dynamic_tree.h) can count splits per group. Off in plain builds.
+  bool log_splits = false;
+  std::vector<SplitRecord> split_log;
 };
 
 // The last step of every build. Renumbers the plane pool in the order nodes use their planes, so a
