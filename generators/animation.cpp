@@ -56,10 +56,15 @@ Vec3 random_axis(Rng& rng) {
 
 }  // namespace
 
-Animation::Animation(AnimationSpec spec) : spec_(std::move(spec)) {
+Animation::Animation(AnimationSpec spec) : Animation(spec, (check_spec(spec), make_scene(spec.scene, spec.scene_params))) {}
+
+Animation::Animation(AnimationSpec spec, Scene static_scene) : spec_(std::move(spec)), static_(std::move(static_scene)) {
   check_spec(spec_);
-  static_ = make_scene(spec_.scene, spec_.scene_params);
   check_scene(static_, "scene " + static_.name);
+  if (spec_.scene != static_.name) {
+    spec_.scene = static_.name;
+    spec_.scene_params.clear();
+  }
   object_ = unit_object(spec_);
   const Box box = bounds(static_);
   const double diagonal = box.diagonal();

@@ -38,6 +38,9 @@ class Animation {
   // Throws UsageError for a value out of range or an object that is not a closed solid, and what
   // make_scene throws for the scene.
   explicit Animation(AnimationSpec spec);
+  // The same around a static scene given whole (a mesh file): spec.scene and scene_params are
+  // replaced by the scene's name and left empty.
+  Animation(AnimationSpec spec, Scene static_scene);
 
   const AnimationSpec& spec() const { return spec_; }
   const Scene& static_scene() const { return static_; }

@@ -150,6 +150,46 @@ TEST_F(Cli, AnimateChecksEveryFrameAndRefusesUnknownStrategies) {
   expect_usage_error("animate --scene city --n 300 --object city", "not a closed solid");
 }
 
+TEST_F(Cli, AnimateRunsEveryStrategyWithDrift) {
+  for (const std::string strategy : {"reinsert", "reinsert-each", "merge", "torres"}) {
+    const CliResult r = run("animate --scene city --n 300 --moving 2 --frames 4 --object-n 24 --drift-every 2 --strategy " +
+                            strategy + " --json");
+    ASSERT_EQ(r.code, 0) << strategy << r.err;
+    const auto out = nlohmann::json::parse(r.out);
+    EXPECT_EQ(out["summary"]["invariant_violations"], 0);
+    EXPECT_EQ(out["object_heuristic"], strategy == "torres" ? "halving" : "crystal");
+    EXPECT_TRUE(out["per_frame"][2]["drift"].is_object());
+    EXPECT_TRUE(out["per_frame"][1]["drift"].is_null());
+    EXPECT_GT(out["summary"]["drift_last"]["fresh_fragments"].get<double>(), 0);
+  }
+  expect_usage_error("animate --scene city --n 300 --frames 4 --strategy merge --shape coarse", "strict tree");
+  const std::string obj = (dir_ / "arch.obj").string();
+  ASSERT_EQ(run("generate --scene architecture --n 120 --out " + obj).code, 0);
+  const CliResult file = run("animate --input " + obj + " --moving 1 --frames 2 --object-n 24 --strategy reinsert --json");
+  ASSERT_EQ(file.code, 0) << file.err;
+  EXPECT_EQ(nlohmann::json::parse(file.out)["summary"]["invariant_violations"], 0);
+  expect_usage_error("animate --input " + obj + " --n 5", "not --input");
+  expect_usage_error("animate --input " + obj + " --scene city", "not both");
+}
+
+TEST_F(Cli, OccludeProvesEachViewAndRefusesBadEyes) {
+  const CliResult r = run("occlude --scene architecture --n 300 --heuristic crystal --views 2 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  ASSERT_EQ(out["views"].size(), 2u);
+  for (const auto& v : out["views"]) {
+    EXPECT_EQ(v["missed_fragments"], 0);
+    EXPECT_LE(v["emitted"].get<int>(), v["frustum_culled"].get<int>());
+    EXPECT_GE(v["emitted"].get<int>(), v["seen_by_embree"].get<int>());
+  }
+  const CliResult one = run("occlude --scene architecture --n 300 --heuristic crystal --eye 30,20,10 --json");
+  ASSERT_EQ(one.code, 0) << one.err;
+  EXPECT_EQ(nlohmann::json::parse(one.out)["views"].size(), 1u);
+  expect_usage_error("occlude --scene architecture --n 300 --heuristic crystal --eye 1,2", "--eye");
+  expect_usage_error("occlude --scene architecture --n 300 --heuristic crystal --look 1,0,0", "--look needs --eye");
+  expect_usage_error("occlude --scene architecture --n 300 --heuristic crystal --eye 1,2,3 --fov 200", "--fov");
+}
+
 TEST_F(Cli, EveryJsonOutputCarriesTheScenesHashAndBoundingBox) {
   const std::string scene = "--scene city --n 60 --seed 4";
   const std::string out = (dir_ / "out" / "run").string();

@@ -79,4 +79,20 @@ void Args::finish() const {
   if (!args_.empty()) throw UsageError("unexpected argument '" + args_.front() + "'");
 }
 
+std::optional<Vec3> Args::point(std::string_view name) {
+  const std::optional<std::string> text = option(name);
+  if (!text) return std::nullopt;
+  double c[3] = {0, 0, 0};
+  const char* p = text->data();
+  const char* end = text->data() + text->size();
+  for (int i = 0; i < 3; ++i) {
+    auto [next, ec] = std::from_chars(p, end, c[i]);
+    const bool separator_ok = i < 2 ? (next != end && *next == ',') : next == end;
+    if (ec != std::errc() || !separator_ok || !std::isfinite(c[i]))
+      throw UsageError("option " + std::string(name) + " wants X,Y,Z (three finite numbers), not '" + *text + "'");
+    p = next + 1;
+  }
+  return Vec3{c[0], c[1], c[2]};
+}
+
 }  // namespace bsp::cli

@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "geometry/vec3.h"
+
 namespace bsp::cli {
 
 // One line of a command's --help: an option as written in the usage line, and what it does.
@@ -26,6 +28,8 @@ class Args {
   // Typed readers; a malformed value is a UsageError naming the option.
   std::optional<long long> integer(std::string_view name, long long min, long long max);
   std::optional<double> real(std::string_view name);
+  // --name X,Y,Z: three finite numbers.
+  std::optional<Vec3> point(std::string_view name);
   // Takes the arguments not starting with "--"; call after every option has been taken.
   std::vector<std::string> positional();
   void finish() const;

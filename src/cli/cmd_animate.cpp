@@ -13,6 +13,7 @@
 #include "animation.h"
 #include "cli/commands.h"
 #include "cli/run_args.h"
+#include "common/errors.h"
 #include "dynamic/updater.h"
 #include "split/registry.h"
 #include "metrics/statistics.h"
@@ -26,11 +27,14 @@ namespace {
 
 constexpr long long kMaxViews = 100;
 
-AnimationSpec spec_from(Args& args, std::uint64_t seed) {
+// With --input FILE the static scene is the file's polygons, which take no generator parameters.
+AnimationSpec spec_from(Args& args, std::uint64_t seed, const std::optional<std::string>& input) {
   AnimationSpec s;
-  s.scene = args.required("--scene");
+  if (input && args.option("--scene")) throw UsageError("give --scene or --input, not both");
+  s.scene = input ? *input : args.required("--scene");
   for (const auto& kv : args.options("--scene-param")) s.scene_params.push_back(parse_assignment(kv));
   if (const auto n = args.option("--n")) s.scene_params.emplace_back("n", *n);
+  if (input && !s.scene_params.empty()) throw UsageError("--n and --scene-param set a generator, not --input");
   s.moving = static_cast<std::uint32_t>(args.integer("--moving", 0, 1000).value_or(s.moving));
   s.frames = static_cast<std::uint32_t>(args.integer("--frames", 1, 100000).value_or(s.frames));
   s.object = args.option("--object").value_or(s.object);
@@ -187,7 +191,8 @@ nlohmann::json frames_json(const std::vector<FrameRecord>& frames) {
 int run(Args& args) {
   const bool json = args.flag("--json");
   const auto seed = static_cast<std::uint64_t>(args.integer("--seed", 0, 9'000'000'000'000'000LL).value_or(1));
-  AnimationSpec spec = spec_from(args, seed);
+  const std::optional<std::string> input = args.option("--input");
+  AnimationSpec spec = spec_from(args, seed, input);
   const std::string heuristic = args.option("--heuristic").value_or("crystal");
   ParamAssignments params;
   for (const auto& kv : args.options("--param")) params.push_back(parse_assignment(kv));
@@ -206,7 +211,7 @@ int run(Args& args) {
   const auto drift_every = static_cast<std::uint32_t>(args.integer("--drift-every", 0, 100000).value_or(0));
   args.finish();
 
-  const Animation animation(spec);
+  const Animation animation = input ? Animation(spec, scene_or_file(spec.scene, {}, "--input")) : Animation(spec);
   auto updater = make_updater(strategy, make_splitter(heuristic, params, seed),
                               make_splitter(object_heuristic, object_params, seed), build);
   // The static polygons as every frame numbers them (Animation::frame), so the invariants' per-source
@@ -250,7 +255,7 @@ int run(Args& args) {
 
 Command animate_command() {
   return {"animate",
-          "--scene NAME [--n N] [--scene-param k=v]... [--moving K] [--frames F] [--object SOLID] [--object-n N] "
+          "(--scene NAME [--n N] [--scene-param k=v]... | --input FILE) [--moving K] [--frames F] [--object SOLID] [--object-n N] "
           "[--size S] [--speed V] [--spin W] [--seed S] [--strategy rebuild|reinsert|reinsert-each|merge|torres] [--heuristic H] [--param k=v]... "
           "[--object-heuristic H] [--object-param k=v]... "
           "[--shape strict|coarse] [--views V] [--check-every N] [--drift-every N] [--json]",

@@ -1,6 +1,5 @@
 // bspbench order: build a tree, write its fragments as PREFIX.obj (face k is fragment k) and the
 // back-to-front order from one eye as PREFIX.order.json, so another tool can draw or check it.
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -15,21 +14,6 @@
 namespace bsp::cli {
 
 namespace {
-
-// "X,Y,Z" with three finite numbers.
-Vec3 parse_point(const std::string& text, std::string_view option) {
-  double c[3] = {0, 0, 0};
-  const char* p = text.data();
-  const char* end = text.data() + text.size();
-  for (int i = 0; i < 3; ++i) {
-    auto [next, ec] = std::from_chars(p, end, c[i]);
-    const bool separator_ok = i < 2 ? (next != end && *next == ',') : next == end;
-    if (ec != std::errc() || !separator_ok || !std::isfinite(c[i]))
-      throw UsageError("option " + std::string(option) + " wants X,Y,Z (three finite numbers), not '" + text + "'");
-    p = next + 1;
-  }
-  return {c[0], c[1], c[2]};
-}
 
 // One face per fragment in fragment order; coordinates printed round-trip exact (%.17g).
 std::string fragments_obj(const Tree& tree) {
@@ -68,7 +52,9 @@ int run(Args& args) {
   std::uint64_t seed = 1;
   const bool json = args.flag("--json");
   const std::string prefix = args.required("--out");
-  const Vec3 eye = parse_point(args.required("--eye"), "--eye");
+  const std::optional<Vec3> eye_option = args.point("--eye");
+  if (!eye_option) throw UsageError("missing option --eye");
+  const Vec3 eye = *eye_option;
   Scene scene = scene_from_args(args, seed);
   const TreeArgs t = tree_args_from(args, seed);
   args.finish();

@@ -22,6 +22,7 @@ const std::vector<Command>& commands() {
       merge_command(),
       classify_command(),
       animate_command(),
+      occlude_command(),
   };
   return all;
 }

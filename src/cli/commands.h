@@ -42,5 +42,6 @@ Command validate_command();
 Command merge_command();
 Command classify_command();
 Command animate_command();
+Command occlude_command();
 
 }  // namespace bsp::cli

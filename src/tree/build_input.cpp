@@ -100,7 +100,7 @@ std::vector<std::uint32_t> add_input(std::span<const Polygon> input, std::uint32
   std::vector<Chunk> window(kLoadWindow);
   for (std::size_t first = 0; first < chunk_count; first += kLoadWindow) {
     const std::size_t count = std::min(kLoadWindow, chunk_count - first);
-#pragma omp parallel for schedule(dynamic, 1) default(none) shared(input, window, eps, first, count, first_source)
+#pragma omp parallel for schedule(dynamic, 1) default(none) shared(input, window, eps, first, count, first_source) if (count > 1)
     for (std::size_t c = 0; c < count; ++c) {
       const std::size_t begin = (first + c) * kLoadChunk, end = std::min(input.size(), begin + kLoadChunk);
       for (std::size_t i = begin; i < end; ++i)
