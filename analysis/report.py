@@ -34,7 +34,7 @@ matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 
 SCHEMA = "bspbench-report"
-VERSION = 3
+VERSION = 4
 # The three axes of the Pareto view, all "lower is better": fragments vs depth vs E_line.
 PARETO_AXES = ("fragments", "max_depth", "e_line")
 SCALING_AXES = (("timings", "build_cpu_seconds", "build CPU time (s)"), ("metrics", "fragments", "fragments"))

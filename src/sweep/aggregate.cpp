@@ -20,6 +20,12 @@ constexpr std::array<std::string_view, 2> kGrowthMetrics = {"fragments", "nodes"
 constexpr std::array<std::string_view, 2> kGrowthTimings = {"build_cpu_seconds", "build_seconds"};
 constexpr std::array<std::string_view, 3> kMergeGrowthMetrics = {"before_nodes", "after_nodes", "partition_nodes"};
 constexpr std::array<std::string_view, 2> kMergeGrowthTimings = {"merge_cpu_seconds", "merge_seconds"};
+// Animate runs: the tree's size at the last frame and the update time; occlude runs: what culling
+// emits, the beam's size and the culling time.
+constexpr std::array<std::string_view, 2> kAnimateGrowthMetrics = {"fragments_last", "work_nodes_built"};
+constexpr std::array<std::string_view, 1> kAnimateGrowthTimings = {"update_cpu_seconds"};
+constexpr std::array<std::string_view, 3> kOccludeGrowthMetrics = {"emitted", "seen_by_embree", "beam_nodes"};
+constexpr std::array<std::string_view, 1> kOccludeGrowthTimings = {"occlude_cpu_seconds"};
 
 struct Group {
   nlohmann::json head;                                      // scene, heuristic, shape, scene_params
@@ -39,6 +45,9 @@ nlohmann::json group_head(const nlohmann::json& id) {
                       {"scene_params", other},
                       {"constant_density", id.value("constant_density", false)}};
   if (is_merge(head)) head["operation"] = id["operation"];
+  if (head["kind"] == "animate")
+    for (const char* k : {"strategy", "object_heuristic", "moving", "speed", "frames", "object", "object_n", "size", "spin"})
+      head[k] = id[k];
   return head;
 }
 
@@ -111,6 +120,16 @@ nlohmann::json group_json(const Group& g) {
   if (is_merge(g.head)) {
     out["growth"] = growth_section(g, "metrics", kMergeGrowthMetrics);
     out["timing_growth"] = growth_section(g, "timings", kMergeGrowthTimings);
+    return out;
+  }
+  if (g.head["kind"] == "animate") {
+    out["growth"] = growth_section(g, "metrics", kAnimateGrowthMetrics);
+    out["timing_growth"] = growth_section(g, "timings", kAnimateGrowthTimings);
+    return out;
+  }
+  if (g.head["kind"] == "occlude") {
+    out["growth"] = growth_section(g, "metrics", kOccludeGrowthMetrics);
+    out["timing_growth"] = growth_section(g, "timings", kOccludeGrowthTimings);
     return out;
   }
   out["growth"] = growth_section(g, "metrics", kGrowthMetrics);

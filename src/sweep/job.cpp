@@ -9,6 +9,7 @@
 #include "catalog.h"
 #include "common/errors.h"
 #include "common/hash.h"
+#include "dynamic/updater.h"
 #include "solid_pairs.h"
 #include "split/registry.h"
 #include "tree/build.h"
@@ -55,7 +56,7 @@ std::vector<std::string> heuristic_names(const SuiteBlock& block) {
 
 Job make_job(const GeneratorInfo& g, const std::string& heuristic, bool incremental, Shape shape,
              std::uint64_t seed, std::uint64_t n, std::uint32_t views) {
-  Job job{g.name, {}, heuristic, incremental, shape, seed, n, views, std::nullopt, 0, {}};
+  Job job{g.name, {}, heuristic, incremental, shape, seed, n, views, std::nullopt, 0, {}, std::nullopt, false};
   if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
   if (find_spec(g, "seed")) job.scene_params.emplace_back("seed", std::to_string(seed));
   assign_key(job);
@@ -91,12 +92,55 @@ void expand_merge_block(const MergeBlock& block, std::vector<Job>& out) {
       for (const auto& h : heuristic_names(heuristics_only))
         for (auto op : set_ops(block))
           for (auto seed : block.seeds) {
-            Job job{pair.name, {}, h, false, Shape::Strict, seed, n, 0, op, block.points, {}};
+            Job job{pair.name, {}, h, false, Shape::Strict, seed, n, 0, op, block.points, {}, std::nullopt, false};
             if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
             job.scene_params.emplace_back("seed", std::to_string(seed));
             assign_key(job);
             out.push_back(std::move(job));
           }
+  }
+}
+
+std::vector<std::uint64_t> block_sizes(const GeneratorInfo& g, const std::vector<std::uint64_t>& sizes) {
+  SuiteBlock b;
+  b.sizes = sizes;
+  return sizes_for(g, b);
+}
+
+void expand_animate_block(const AnimateBlock& block, std::vector<Job>& out) {
+  SuiteBlock heuristics_only;
+  heuristics_only.heuristics = block.heuristics;
+  const std::vector<std::string> strategies = block.strategies.empty() ? updater_names() : block.strategies;
+  for (const auto& scene : block.scenes) {
+    const GeneratorInfo& g = find_generator(scene);
+    for (auto n : block_sizes(g, block.sizes))
+      for (const auto& h : heuristic_names(heuristics_only))
+        for (const auto& strategy : strategies)
+          for (auto moving : block.moving)
+            for (auto speed : block.speeds)
+              for (auto seed : block.seeds) {
+                Job job = make_job(g, h, false, Shape::Strict, seed, n, block.views);
+                job.animate = AnimateParams{strategy,  moving, block.frames, block.object,     block.object_n,
+                                            block.size, speed, block.spin,  block.check_every, block.drift_every};
+                assign_key(job);
+                out.push_back(std::move(job));
+              }
+  }
+}
+
+void expand_occlude_block(const OccludeBlock& block, std::vector<Job>& out) {
+  SuiteBlock heuristics_only;
+  heuristics_only.heuristics = block.heuristics;
+  for (const auto& scene : block.scenes) {
+    const GeneratorInfo& g = find_generator(scene);
+    for (auto n : block_sizes(g, block.sizes))
+      for (const auto& h : heuristic_names(heuristics_only))
+        for (auto seed : block.seeds) {
+          Job job = make_job(g, h, false, Shape::Strict, seed, n, block.views);
+          job.occlude = true;
+          assign_key(job);
+          out.push_back(std::move(job));
+        }
   }
 }
 
@@ -152,6 +196,30 @@ std::string merge_command(const Job& job) {
   }
   return command + " --op " + std::string(set_op_name(*job.op)) + heuristic_arguments(parse_heuristic_variant(job.heuristic)) +
          " --seed " + std::to_string(job.seed) + " --points " + std::to_string(job.points);
+}
+
+// The object trees' heuristic of an animate job: halving for torres (its method), else the run's.
+std::string object_heuristic(const Job& job) { return job.animate->strategy == "torres" ? "halving" : job.heuristic; }
+
+std::string animate_command(const Job& job) {
+  const AnimateParams& a = *job.animate;
+  std::string command = "bspbench animate --scene " + job.scene;
+  if (job.n > 0) command += " --n " + std::to_string(job.n);
+  const auto real = [](double x) { return nlohmann::json(x).dump(); };
+  command += " --seed " + std::to_string(job.seed) + " --moving " + std::to_string(a.moving) + " --frames " +
+             std::to_string(a.frames) + " --object " + a.object + " --object-n " + std::to_string(a.object_n) +
+             " --size " + real(a.size) + " --speed " + real(a.speed) + " --spin " + real(a.spin) + " --strategy " +
+             a.strategy + heuristic_arguments(parse_heuristic_variant(job.heuristic));
+  if (object_heuristic(job) != job.heuristic) command += " --object-heuristic " + object_heuristic(job);
+  return command + " --views " + std::to_string(job.validation_views) + " --check-every " +
+         std::to_string(a.check_every) + " --drift-every " + std::to_string(a.drift_every);
+}
+
+std::string occlude_command(const Job& job) {
+  std::string command = "bspbench occlude --scene " + job.scene;
+  if (job.n > 0) command += " --n " + std::to_string(job.n);
+  return command + " --seed " + std::to_string(job.seed) + heuristic_arguments(parse_heuristic_variant(job.heuristic)) +
+         " --views " + std::to_string(job.validation_views);
 }
 
 std::string build_arguments(const Job& job) {
@@ -213,7 +281,42 @@ std::string merge_hash(const Job& job) {
 
 std::array<SolidOperand, 2> merge_operands(const Job& job) { return find_solid_pair(job.scene).operands(job.n, job.seed); }
 
-void assign_key(Job& job) { job.key = job.op ? merge_hash(job) : run_hash(job, scene_params(job).canonical()); }
+// An animate job's key adds its animation and strategy to the drawing run's; an occlude job's, its kind.
+std::string dynamic_hash(const Job& job) {
+  Hasher h;
+  h.add_string(std::string(job_kind_name(job.kind())));
+  h.add_string(run_hash(job, scene_params(job).canonical()));
+  if (job.animate) {
+    const AnimateParams& a = *job.animate;
+    h.add_string(a.strategy);
+    h.add_string(object_heuristic(job));
+    h.add_string(a.object);
+    for (const std::uint64_t v : {std::uint64_t{a.moving}, std::uint64_t{a.frames}, a.object_n,
+                                  std::uint64_t{a.check_every}, std::uint64_t{a.drift_every}})
+      h.add_u64(v);
+    for (const double v : {a.size, a.speed, a.spin}) h.add_string(nlohmann::json(v).dump());
+  }
+  return h.hex();
+}
+
+void assign_key(Job& job) {
+  switch (job.kind()) {
+    case JobKind::Merge: job.key = merge_hash(job); break;
+    case JobKind::Animate:
+    case JobKind::Occlude: job.key = dynamic_hash(job); break;
+    case JobKind::Draw: job.key = run_hash(job, scene_params(job).canonical()); break;
+  }
+}
+
+std::string_view job_kind_name(JobKind kind) {
+  switch (kind) {
+    case JobKind::Merge: return "merge";
+    case JobKind::Animate: return "animate";
+    case JobKind::Occlude: return "occlude";
+    case JobKind::Draw: break;
+  }
+  return "draw";
+}
 
 namespace {
 
@@ -228,7 +331,9 @@ const std::string& scene_hash(const Job& job) {
 }
 
 // What a run measures, apart from the nominal size: two jobs alike in all of it are one run.
-std::string run_identity(const Job& job) { return job.op ? job.key : run_hash(job, scene_hash(job)); }
+std::string run_identity(const Job& job) {
+  return job.kind() == JobKind::Draw ? run_hash(job, scene_hash(job)) : job.key;
+}
 
 }  // namespace
 
@@ -236,6 +341,8 @@ std::vector<Job> expand(const Suite& suite) {
   std::vector<Job> all;
   for (const auto& block : suite.blocks) expand_block(block, all);
   for (const auto& block : suite.merges) expand_merge_block(block, all);
+  for (const auto& block : suite.animations) expand_animate_block(block, all);
+  for (const auto& block : suite.occlusions) expand_occlude_block(block, all);
   // Smallest nominal size first, so a scene built at several sizes runs once, at the smallest.
   std::stable_sort(all.begin(), all.end(), [](const Job& a, const Job& b) { return a.n < b.n; });
   std::vector<Job> jobs;
@@ -298,8 +405,42 @@ nlohmann::json merge_identity(const Job& job) {
 
 }  // namespace
 
+namespace {
+nlohmann::json drawing_identity(const Job& job);
+}  // namespace
+
 nlohmann::json job_identity(const Job& job) {
   if (job.op) return merge_identity(job);
+  if (job.animate) {
+    const AnimateParams& a = *job.animate;
+    nlohmann::json id = drawing_identity(job);
+    id["kind"] = "animate";
+    id["strategy"] = a.strategy;
+    id["object_heuristic"] = object_heuristic(job);
+    id["moving"] = a.moving;
+    id["frames"] = a.frames;
+    id["object"] = a.object;
+    id["object_n"] = a.object_n;
+    id["size"] = a.size;
+    id["speed"] = a.speed;
+    id["spin"] = a.spin;
+    id["check_every"] = a.check_every;
+    id["drift_every"] = a.drift_every;
+    id["command"] = animate_command(job);
+    return id;
+  }
+  if (job.occlude) {
+    nlohmann::json id = drawing_identity(job);
+    id["kind"] = "occlude";
+    id["command"] = occlude_command(job);
+    return id;
+  }
+  return drawing_identity(job);
+}
+
+namespace {
+
+nlohmann::json drawing_identity(const Job& job) {
   std::string command = "bspbench build --scene " + job.scene;
   if (job.n > 0) command += " --n " + std::to_string(job.n);
   command += " --seed " + std::to_string(job.seed) + build_arguments(job) + " --shape " + shape_name(job.shape);
@@ -316,5 +457,7 @@ nlohmann::json job_identity(const Job& job) {
           {"validation_views", job.validation_views},
           {"command", command}};
 }
+
+}  // namespace
 
 }  // namespace bsp::sweep

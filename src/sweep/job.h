@@ -5,9 +5,11 @@
 // and the points checked), so journals, shards, merges and regression gates all match runs by key.
 // The seed feeds both the scene generator and the heuristic, as in `bspbench build --seed`.
 //
-// Two kinds of job: a drawing job builds one scene's tree and measures it (run_job.h); a merge job
+// Four kinds of job: a drawing job builds one scene's tree and measures it (run_job.h); a merge job
 // (`op` set) builds the two operands of a solid pair (solid_pairs.h) as solid trees and merges them
-// by a set operation (run_merge_job.h).
+// by a set operation (run_merge_job.h); an animate job (`animate` set) keeps an animated scene's
+// tree by an update strategy over its frames, and an occlude job (`occlude`) culls a scene's tree
+// by beam tracing from the metric views (run_dynamic_jobs.h).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -24,6 +26,20 @@
 
 namespace bsp::sweep {
 
+// An animate job's animation (generators/animation.h) and update strategy (dynamic/updater.h).
+struct AnimateParams {
+  std::string strategy;
+  std::uint32_t moving = 4;
+  std::uint32_t frames = 100;
+  std::string object = "sphere";
+  std::uint64_t object_n = 80;
+  double size = 0.04, speed = 0.004, spin = 0.02;
+  std::uint32_t check_every = 1;  // frames checked: every N-th and the last
+  std::uint32_t drift_every = 0;  // frames also built fresh: every N-th and the last; 0 none
+};
+
+enum class JobKind : std::uint8_t { Draw, Merge, Animate, Occlude };
+
 struct Job {
   std::string scene;
   ParamAssignments scene_params;  // n and seed when the generator has them
@@ -36,7 +52,13 @@ struct Job {
   std::optional<SetOp> op;  // merge jobs: `scene` names a solid pair, `n` is each operand's size
   std::uint64_t points = 0;  // merge jobs: points classified against CGAL's exact answer
   std::string key;  // 16 hex digits, see the header comment
+  std::optional<AnimateParams> animate = std::nullopt;  // animate jobs
+  bool occlude = false;  // occlude jobs: validation_views is the number of metric views
+  JobKind kind() const {
+    return op ? JobKind::Merge : animate ? JobKind::Animate : occlude ? JobKind::Occlude : JobKind::Draw;
+  }
 };
+std::string_view job_kind_name(JobKind kind);  // draw, merge, animate, occlude
 
 // A suite's heuristic entry: a registered name, "NAME", or a name with parameters,
 // "NAME:k=v,k=v" (e.g. "weighted:candidates=0", the exhaustive variant). The whole text labels the

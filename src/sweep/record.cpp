@@ -35,6 +35,16 @@ constexpr TimingField kTimingFields[] = {
     {"build_b_cpu_seconds", TimingKind::Cpu, "thread CPU seconds of the second operand's solid tree"},
     {"corefine_seconds", TimingKind::Wall, "wall time of CGAL's corefinement of the same operands (the reference)"},
     {"check_seconds", TimingKind::Wall, "wall time of the proof against CGAL (points, volume, boundary)"},
+    {"update_cpu_samples", TimingKind::UpdateSamples,
+     "thread CPU seconds of each frame's update, frames 1 on (animate runs: run_dynamic_jobs.h)"},
+    {"update_cpu_seconds", TimingKind::UpdateSummary, "the median of update_cpu_samples"},
+    {"update_cpu_seconds_max", TimingKind::Cpu, "the slowest update"},
+    {"start_cpu_seconds", TimingKind::Cpu, "thread CPU seconds of the strategy's first frame (its whole build)"},
+    {"occlude_cpu_samples", TimingKind::OccludeSamples,
+     "thread CPU seconds per culling of every view, one per timed batch of at least 2 ms (occlude runs)"},
+    {"occlude_cpu_seconds", TimingKind::OccludeSummary, "the median of occlude_cpu_samples, divided by the views"},
+    {"occlude_cpu_runs", TimingKind::OccludeCount, "cullings of every view timed: depends on the machine's speed"},
+    {"occluder_setup_cpu_seconds", TimingKind::Cpu, "thread CPU seconds of the subtree boxes (once per tree)"},
 };
 
 }  // namespace

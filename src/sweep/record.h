@@ -4,8 +4,8 @@
 // A run record (analysis/SCHEMA.md) is {key, id, metrics, invariants, validation, ray_shooting,
 // timings, calibration_seconds}. The timing fields are declared in ONE place, timing_fields():
 // split_timings() moves exactly those out of the metrics and validation objects into "timings",
-// and the regression gate gates exactly the ones declared as build samples (drawing runs) and
-// merge samples (merge runs). Everything else in a
+// and the regression gate gates exactly the ones declared as build samples (drawing runs), merge
+// samples (merge runs), update samples (animate runs) and occlude samples (occlude runs). Everything else in a
 // record is a deterministic function of the job — identical on any machine, thread count and
 // shard — and compared exactly by the gate. A field that is not declared stays where it is and is
 // compared exactly, whatever its name: renaming a timing without declaring it makes the gate fail
@@ -28,6 +28,11 @@ enum class TimingKind {
   MergeSamples,  // thread CPU seconds per merge, one per timed batch: what the gate compares for merges
   MergeSummary,  // the median of the merge samples
   MergeCount,    // merges timed for the samples
+  UpdateSamples, // thread CPU seconds of each frame's update: what the gate compares for animate runs
+  UpdateSummary, // the median of the update samples
+  OccludeSamples,  // thread CPU seconds per culling of every view, one per timed batch: gated for occlude runs
+  OccludeSummary,  // the median of the occlude samples, per view
+  OccludeCount,    // cullings of every view timed for the samples
 };
 
 struct TimingField {
@@ -40,7 +45,7 @@ struct TimingField {
 std::span<const TimingField> timing_fields();
 // nullptr when `name` is not a declared timing field.
 const TimingField* find_timing_field(std::string_view name);
-// The declared field of this kind (there is one each of the Build and Merge kinds).
+// The declared field of this kind (there is one each of the Build, Merge, Update and Occlude kinds).
 std::string_view timing_field_name(TimingKind kind);
 
 // Moves the fields of the flat object `from` whose prefixed names are declared timing fields into

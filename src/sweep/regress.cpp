@@ -29,9 +29,14 @@ constexpr const char* kDeterministicSections[] = {"id", "metrics", "invariants",
 constexpr std::pair<const char*, const char*> kMustBeZero[] = {
     {"invariants", "violations"}, {"validation", "violations"}, {"ray_shooting", "mismatches"}};
 
-// The timing group of a run (regress.h): a merge run's shape is its operation.
+// The timing group of a run (regress.h): a merge run's shape is its operation, an animate run's its
+// update strategy, an occlude run's "occlude".
 std::string group_label(const nlohmann::json& id) {
-  const std::string shape = id.contains("operation") ? id.value("operation", "?") : id.value("shape", "?");
+  const std::string kind = id.value("kind", "draw");
+  const std::string shape = kind == "merge"     ? id.value("operation", "?")
+                            : kind == "animate" ? id.value("strategy", "?")
+                            : kind == "occlude" ? "occlude"
+                                                : id.value("shape", "?");
   return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + shape;
 }
 
@@ -94,10 +99,15 @@ struct Comparer {
   }
 };
 
-// The gated samples of a run: a drawing run's builds, a merge run's merges.
+// The gated samples of a run: a drawing run's builds, a merge run's merges, an animate run's
+// updates, an occlude run's cullings.
 std::string gated_field(const nlohmann::json& run) {
-  const bool merge = section_of(run, "id").value("kind", "") == "merge";
-  return std::string(timing_field_name(merge ? TimingKind::MergeSamples : TimingKind::BuildSamples));
+  const std::string kind = section_of(run, "id").value("kind", "");
+  const TimingKind samples = kind == "merge"     ? TimingKind::MergeSamples
+                             : kind == "animate" ? TimingKind::UpdateSamples
+                             : kind == "occlude" ? TimingKind::OccludeSamples
+                                                 : TimingKind::BuildSamples;
+  return std::string(timing_field_name(samples));
 }
 
 // The gated samples of a run divided by its calibration time; empty when it has none.

@@ -60,10 +60,14 @@ bool has_labels(const nlohmann::json& id, bool optional) {
   return true;
 }
 
-// A drawing run, or a merge run with its operation and two operands.
+// A drawing or occlude run, an animate run with its strategy and moving count, or a merge run with
+// its operation and two operands.
 bool has_kind(const nlohmann::json& id) {
   if (!has(id, "kind", &nlohmann::json::is_string)) return false;
-  if (id["kind"] == "draw") return true;
+  if (id["kind"] == "draw" || id["kind"] == "occlude") return true;
+  if (id["kind"] == "animate")
+    return has(id, "strategy", &nlohmann::json::is_string) && has(id, "moving", &nlohmann::json::is_number_unsigned) &&
+           has(id, "speed", &nlohmann::json::is_number);
   return id["kind"] == "merge" && has(id, "operation", &nlohmann::json::is_string) &&
          has(id, "operands", &nlohmann::json::is_array) && id["operands"].size() == 2;
 }
@@ -101,7 +105,7 @@ void check_layout(const nlohmann::json& report, const std::string& path) {
   for (const auto& r : report["runs"])
     if (!is_run(r))
       bad("a run record lacks key, id (kind, scene, heuristic, shape, n, n_polygons, scene_params; a merge run's "
-          "operation and two operands), metrics, invariants, validation, timings or calibration_seconds, or one has "
+          "operation and two operands; an animate run's strategy, moving and speed), metrics, invariants, validation, timings or calibration_seconds, or one has "
           "the wrong type");
   for (const auto& f : report["failures"])
     if (!is_failure(f)) bad("a failure record lacks key or id, or one has the wrong type");

@@ -14,6 +14,7 @@
 #include "split/registry.h"
 #include "sweep/calibration.h"
 #include "sweep/record.h"
+#include "sweep/run_dynamic_jobs.h"
 #include "sweep/run_merge_job.h"
 #include "tree/build.h"
 #include "validate/order_check.h"
@@ -125,6 +126,8 @@ PlantedSlowdown parse_planted_slowdown(const std::string& text) {
 
 nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& plant) {
   if (job.op) return run_merge_job(job, plant);
+  if (job.animate) return run_animate_job(job);
+  if (job.occlude) return run_occlude_job(job, plant);
   const auto start = std::chrono::steady_clock::now();
   Scene scene = make_scene(job.scene, job.scene_params);
   check_scene(scene, "scene " + scene.name);

@@ -31,12 +31,49 @@ MergeBlock few_merges(std::vector<std::uint64_t> sizes, std::vector<std::uint64_
   return {{"spheres", "hollow-boxes"}, {}, {}, std::move(sizes), std::move(seeds), points};
 }
 
+// Dynamic scenes for a gate: city and architecture at 300, every strategy, two object counts and
+// two speeds, a dozen frames each checked every third, one fresh build half way.
+AnimateBlock few_animations(std::vector<std::string> heuristics) {
+  AnimateBlock b;
+  b.scenes = {"city", "architecture"};
+  b.sizes = {300};
+  b.heuristics = std::move(heuristics);
+  b.moving = {2, 6};
+  b.speeds = {0.004, 0.02};
+  b.seeds = {1};
+  b.frames = 12;
+  b.object_n = 48;
+  b.check_every = 3;
+  b.drift_every = 6;
+  b.views = 1;
+  return b;
+}
+
+// Occlusion culling of the scenes it is for: interiors, a city, a terrain.
+OccludeBlock occlusions(std::vector<std::uint64_t> sizes, std::vector<std::string> heuristics,
+                        std::vector<std::uint64_t> seeds, std::uint32_t views) {
+  return {{"architecture", "city", "terrain"}, std::move(sizes), std::move(heuristics), std::move(seeds), views};
+}
+
 Suite smoke() {
   return {"smoke",
           "9 s on 2 shared cores (450 runs): every scene and heuristic at two tiny sizes, one view, and merges of "
           "two solid pairs at one; for tests and trying things out",
           {{{}, {}, {40, 100}, superlinear({16, 32}, {30, 60}), {1, 2}, {Shape::Strict}, {1, 0, 1}}},
-          {few_merges({50}, {1}, 2000)}};
+          {few_merges({50}, {1}, 2000)},
+          {[] {
+            AnimateBlock b = few_animations({"crystal"});
+            b.scenes = {"city"};
+            b.sizes = {100};
+            b.moving = {2};
+            b.speeds = {0.01};
+            b.frames = 4;
+            b.object_n = 24;
+            b.check_every = 1;
+            b.drift_every = 2;
+            return b;
+          }()},
+          {occlusions({100}, {"crystal"}, {1}, 2)}};
 }
 
 // CI's gate, so everything that can break is in it: strict trees at three sizes; coarse leaves and
@@ -51,7 +88,29 @@ Suite quick() {
            {{}, kExhaustive, {300}, superlinear({60}, {200}), {1, 2}, {Shape::Strict}, {2, 0, 2}},
            {{}, {}, {100, 300}, superlinear({30, 60}, {100, 200}), {1, 2}, {Shape::Strict, Shape::Coarse}, {2, 0, 2},
             true}},
-          {few_merges({100, 300}, {1, 2}, 5000)}};
+          {few_merges({100, 300}, {1, 2}, 5000)},
+          {few_animations({"crystal", "naylor"})},
+          {occlusions({300, 1000}, {}, {1}, 2)}};
+}
+
+// The research question of dynamic scenes: each strategy against rebuild as the moving share of the
+// polygons and the speed grow. Every strategy, crystal's trees, checked every 10th frame, a fresh
+// build every 30th.
+AnimateBlock dynamic_block(std::vector<std::string> scenes, std::vector<std::uint64_t> sizes,
+                           std::vector<std::uint32_t> moving, std::vector<double> speeds,
+                           std::vector<std::uint64_t> seeds, std::uint32_t frames) {
+  AnimateBlock b;
+  b.scenes = std::move(scenes);
+  b.sizes = std::move(sizes);
+  b.heuristics = {"crystal"};
+  b.moving = std::move(moving);
+  b.speeds = std::move(speeds);
+  b.seeds = std::move(seeds);
+  b.frames = frames;
+  b.check_every = 10;
+  b.drift_every = 30;
+  b.views = 1;
+  return b;
 }
 
 std::vector<SceneSizes> default_sizes() {
@@ -64,7 +123,9 @@ Suite default_suite() {
           "3*10^3 (near-degenerate to 10^3), 3 seeds, 2 views (1 past 10^3); merges of every solid pair to 10^3",
           {{{}, {}, {100, 300, 1000, 3000}, default_sizes(), {1, 2, 3}, {Shape::Strict}, {2, 1000, 1}},
            {{}, kExhaustive, {100, 300, 1000, 3000}, default_sizes(), {1, 2, 3}, {Shape::Strict}, {2, 1000, 1}}},
-          {{{}, {}, {}, {100, 300, 1000}, {1, 2, 3}, 10000}}};
+          {{{}, {}, {}, {100, 300, 1000}, {1, 2, 3}, 10000}},
+          {dynamic_block({"city", "architecture"}, {1000}, {1, 4, 16}, {0.002, 0.008, 0.032}, {1, 2}, 60)},
+          {occlusions({1000, 3000}, {}, {1, 2, 3}, 4)}};
 }
 
 // Set operations only: every solid pair, heuristic and operation at 300 and 10^3 polygons per
@@ -77,6 +138,30 @@ Suite merge_suite() {
           "10^3 per operand, 5 seeds",
           {},
           {{{}, {}, {}, {300, 1000}, {1, 2, 3, 4, 5}, 10000}}};
+}
+
+// Dynamic scenes only: the crossover of every strategy with rebuild over 6 object counts and 4
+// speeds, on city and architecture at 10^3 and 10^4.
+Suite dynamic_suite() {
+  return {"dynamic",
+          "measured below: every update strategy on city and architecture at 10^3 and 10^4, 1 to 32 moving spheres, "
+          "4 speeds, 2 seeds, 60 frames",
+          {},
+          {},
+          {dynamic_block({"city", "architecture"}, {1000, 10000}, {1, 2, 4, 8, 16, 32}, {0.001, 0.004, 0.016, 0.064},
+                         {1, 2}, 60)}};
+}
+
+// Occlusion culling only: architecture, city and terrain at 4 sizes to 3*10^4, every heuristic,
+// 3 seeds, 8 views.
+Suite occlusion_suite() {
+  return {"occlusion",
+          "measured below: occlusion culling on architecture, city and terrain at 10^3 to 3*10^4, every heuristic, "
+          "3 seeds, 8 views",
+          {},
+          {},
+          {},
+          {occlusions({1000, 3000, 10000, 30000}, {}, {1, 2, 3}, 8)}};
 }
 
 // The large sizes run every heuristic at its defaults (sampled candidates keep each build near
@@ -102,7 +187,8 @@ Suite full() {
 }  // namespace
 
 const std::vector<Suite>& suites() {
-  static const std::vector<Suite> all = {smoke(), quick(), default_suite(), merge_suite(), full()};
+  static const std::vector<Suite> all = {smoke(), quick(), default_suite(), merge_suite(), dynamic_suite(),
+                                         occlusion_suite(), full()};
   return all;
 }
 

@@ -58,11 +58,43 @@ struct MergeBlock {
   std::uint64_t points = 0;             // classified against CGAL's exact answer per run
 };
 
+// Dynamic scenes (generators/animation.h, dynamic/updater.h): one animate job per scene, size,
+// heuristic, update strategy, moving-object count, speed and seed, all other animation settings the
+// block's. The research question: at which moving fraction and speed does each strategy stop
+// beating rebuild?
+struct AnimateBlock {
+  std::vector<std::string> scenes;
+  std::vector<std::uint64_t> sizes;
+  std::vector<std::string> heuristics;
+  std::vector<std::string> strategies;  // empty: every strategy
+  std::vector<std::uint32_t> moving;
+  std::vector<double> speeds;
+  std::vector<std::uint64_t> seeds;
+  std::uint32_t frames = 100;
+  std::string object = "sphere";
+  std::uint64_t object_n = 80;
+  double size = 0.04, spin = 0.02;
+  std::uint32_t check_every = 10, drift_every = 0;
+  std::uint32_t views = 2;  // Embree order check views per checked frame
+};
+
+// Occlusion culling by beam tracing (cull/occlusion.h): one occlude job per scene, size, heuristic
+// and seed, culling from `views` metric views, each proved by Embree primary rays.
+struct OccludeBlock {
+  std::vector<std::string> scenes;
+  std::vector<std::uint64_t> sizes;
+  std::vector<std::string> heuristics;
+  std::vector<std::uint64_t> seeds;
+  std::uint32_t views = 4;
+};
+
 struct Suite {
   std::string name;
   std::string summary;  // one line, with the measured run time
   std::vector<SuiteBlock> blocks;
   std::vector<MergeBlock> merges = {};
+  std::vector<AnimateBlock> animations = {};
+  std::vector<OccludeBlock> occlusions = {};
 };
 
 const std::vector<Suite>& suites();
