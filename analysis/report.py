@@ -18,6 +18,13 @@ after reduction at the largest size (sizes-PAIR.png), a table of merge cost per 
 operation, and a verdict per pair and operation: which heuristic's trees merge fastest, whether its
 interval over seeds separates it from the runner-up, and where Naylor's expected-cost trees rank.
 
+Animate runs (dynamic scenes) get a section answering: at what moving fraction and speed does each
+update strategy stop beating rebuild? Per scene and size, the update time of every strategy divided
+by rebuild's at the same objects and speed, against the moving fraction, one panel per speed
+(dynamic-SCENE-N.png), the crossover found, and the drift of the updated trees from fresh builds.
+Occlude runs get a section on occlusion culling: per scene, what culling emits against what Embree
+sees and against frustum culling alone, and its cost, per heuristic and size (occlusion-SCENE.png).
+
 Needs matplotlib (Debian: python3-matplotlib; call /usr/bin/python3, a pyenv python3 may lack it).
 Exit status: 0 written, 2 bad input (unreadable file, not a bspbench report, other version).
 """
@@ -76,11 +83,15 @@ def is_merge(agg):
     return agg.get("kind") == "merge"
 
 
+def kind(agg):
+    return agg.get("kind", "draw")
+
+
 def by_scene(report):
     """Scene -> its drawing aggregates, each given a "label" that tells it from the others of the scene."""
     scenes = {}
     for agg in report["aggregates"]:
-        if not is_merge(agg):
+        if kind(agg) == "draw":
             scenes.setdefault(agg["scene"], []).append(agg)
     for aggs in scenes.values():
         vary = len({json.dumps(a.get("scene_params"), sort_keys=True) for a in aggs}) > 1
@@ -397,6 +408,190 @@ def merge_section(report, out_dir):
     return "<li><a href='#merges'>set operations</a></li>", "".join(parts)
 
 
+def value(entry, section, field):
+    v = entry.get(section, {}).get(field)
+    return None if v is None else v["mean"]
+
+
+def dynamic_cases(report):
+    """(scene, n) -> {(strategy, moving, speed): by_n entry}, for the animate aggregates."""
+    cases = {}
+    for agg in report["aggregates"]:
+        if kind(agg) != "animate":
+            continue
+        for e in agg["by_n"]:
+            cases.setdefault((agg["scene"], e["n"]), {})[(agg["strategy"], agg["moving"], agg["speed"])] = e
+    return dict(sorted(cases.items()))
+
+
+def update_ratio(runs, strategy, moving, speed):
+    """Mean update time of a strategy over rebuild's at the same objects and speed."""
+    mine, base = runs.get((strategy, moving, speed)), runs.get(("rebuild", moving, speed))
+    if mine is None or base is None:
+        return None
+    t, b = value(mine, "timings", "update_cpu_seconds"), value(base, "timings", "update_cpu_seconds")
+    return None if not t or not b else t / b
+
+
+def plot_dynamic(scene, n, runs, path):
+    speeds = sorted({sp for _, _, sp in runs})
+    strategies = sorted({st for st, _, _ in runs if st != "rebuild"})
+    fig, axes = plt.subplots(1, len(speeds), figsize=(4.2 * len(speeds), 4.2), squeeze=False)
+    for ax, speed in zip(axes[0], speeds):
+        for st in strategies:
+            pts = sorted((value(e, "metrics", "moving_fraction"), update_ratio(runs, st, m, speed))
+                         for (s2, m, sp), e in runs.items() if s2 == st and sp == speed)
+            pts = [(x, y) for x, y in pts if x is not None and y is not None]
+            if pts:
+                ax.plot(*zip(*pts), marker="o", label=st)
+        ax.axhline(1.0, color="red", linewidth=1, linestyle="--")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("moving fraction of the polygons")
+        ax.set_ylabel("update time / rebuild's")
+        ax.set_title(f"{scene}, n = {n}, speed {speed} diagonals/frame", fontsize=9)
+        ax.grid(True, which="both", alpha=0.3)
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="lower center", ncol=len(labels), fontsize=8)
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def crossover_rows(runs):
+    """Per strategy and speed: the largest moving fraction where it still beats rebuild (ratio < 1) and
+    the smallest where it no longer does."""
+    rows = []
+    for st in sorted({st for st, _, _ in runs if st != "rebuild"}):
+        for speed in sorted({sp for _, _, sp in runs}):
+            pts = sorted((value(e, "metrics", "moving_fraction"), update_ratio(runs, st, m, speed))
+                         for (s2, m, sp), e in runs.items() if s2 == st and sp == speed)
+            pts = [(x, r) for x, r in pts if x is not None and r is not None]
+            if not pts:
+                continue
+            wins = [x for x, r in pts if r < 1]
+            losses = [x for x, r in pts if r >= 1]
+            if not losses:
+                verdict = f"beats rebuild at every fraction measured (to {pts[-1][0]:.3g})"
+            elif not wins:
+                verdict = f"never beats rebuild (from {pts[0][0]:.3g})"
+            else:
+                # Where it stops winning: the first fraction past its last win, else its first loss.
+                stop = min((x for x in losses if x > max(wins)), default=min(losses))
+                verdict = f"beats rebuild up to {max(wins):.3g}, not at {stop:.3g}"
+            ratios = ", ".join(f"{r:.2g}" for _, r in pts)
+            rows.append(f"<tr><td>{html.escape(st)}</td><td>{speed}</td><td>{html.escape(verdict)}</td>"
+                        f"<td>{html.escape(ratios)}</td></tr>")
+    return rows
+
+
+DRIFT_COLUMNS = (("metrics", "drift_fragments_ratio", "fragments / a fresh build's, last drift frame"),
+                 ("metrics", "drift_culled_nodes_visited_ratio", "culled traversal nodes / a fresh build's"),
+                 ("metrics", "drift_depth_ratio", "depth / a fresh build's"),
+                 ("metrics", "work_repairs", "removed nodes with two non-empty subtrees, all updates"),
+                 ("metrics", "work_reinserted_fragments", "fragments those repairs reinserted"),
+                 ("metrics", "work_partitioned_nodes", "object-tree nodes partitioned by host planes"),
+                 ("metrics", "work_moved_nodes", "nodes moved in place (torres)"),
+                 ("metrics", "work_objects_whole", "objects placed whole in one cell"),
+                 ("timings", "update_cpu_seconds", "median update, thread CPU seconds"),
+                 ("timings", "start_cpu_seconds", "first frame (the whole build), thread CPU seconds"))
+
+
+def drift_table(runs):
+    head = "".join(f"<th title='{html.escape(doc)}'>{html.escape(k)}</th>" for _, k, doc in DRIFT_COLUMNS)
+    rows = []
+    for (st, m, sp), e in sorted(runs.items()):
+        cells = "".join(f"<td>{cell(e[s].get(k))}</td>" for s, k, _ in DRIFT_COLUMNS)
+        rows.append(f"<tr><td>{html.escape(st)}</td><td>{m}</td><td>{sp}</td><td>{e['runs']}</td>"
+                    f"<td>{e['validation_violations']}</td>{cells}</tr>")
+    return ("<div class=scroll><table><tr><th>strategy</th><th>moving objects</th><th>speed</th><th>runs</th>"
+            "<th>order violations</th>" + head + "</tr>" + "".join(rows) + "</table></div>")
+
+
+def dynamic_section(report, out_dir):
+    cases = dynamic_cases(report)
+    if not cases:
+        return "", ""
+    parts = ["<h2 id='dynamic'>Dynamic scenes: when does updating beat rebuilding?</h2>"
+             "<p>Each run moves spheres through a static scene for a number of frames and keeps one tree with an "
+             "update strategy: rebuild (a full build per frame), reinsert and reinsert-each (Chrysanthou and "
+             "Slater's removal and reinsertion), merge (Naylor's per-frame merge of the objects' trees into the "
+             "static tree) and torres (object trees in cells, separating planes, moved in place while they stay). "
+             "Checked frames pass the tree invariants and the Embree order check. The plots give each strategy's "
+             "median update time over rebuild's at the same objects and speed (below the dashed line it wins); "
+             "the table says where each stops winning. Drift compares the last drift frame's tree with a fresh "
+             "build of the same frame.</p>"]
+    for (scene, n), runs in cases.items():
+        png = f"dynamic-{slug(scene)}-{n}.png"
+        plot_dynamic(scene, n, runs, os.path.join(out_dir, png))
+        parts.append(f"<h3 id='dynamic-{slug(scene)}-{n}'>{html.escape(scene)}, n = {n}</h3>"
+                     "<table><tr><th>strategy</th><th>speed</th><th>crossover with rebuild</th>"
+                     "<th>time ratios, by moving fraction</th></tr>" + "".join(crossover_rows(runs)) + "</table>"
+                     f"<img src='{png}' alt='update time over rebuild for {html.escape(scene)}'>"
+                     f"<h4>Drift and work</h4>{drift_table(runs)}")
+    return "<li><a href='#dynamic'>dynamic scenes</a></li>", "".join(parts)
+
+
+OCCLUSION_COLUMNS = (("metrics", "emitted", "fragments emitted, all views"),
+                     ("metrics", "seen_by_embree", "fragments some Embree ray sees first, all views"),
+                     ("metrics", "frustum_culled", "fragments frustum culling alone emits, all views"),
+                     ("metrics", "emitted_per_seen_mean", "emitted / seen, mean over views (1 = exact)"),
+                     ("metrics", "emitted_per_frustum_culled_mean", "emitted / frustum-culled, mean over views"),
+                     ("metrics", "beam_nodes", "beam tree nodes at the end, all views"),
+                     ("metrics", "beam_merges", "OUT leaves replaced by a piece's beam, all views"),
+                     ("metrics", "subtrees_culled", "subtrees skipped whole, all views"),
+                     ("metrics", "views_covered", "views where the beam covered the view and the walk stopped"),
+                     ("timings", "occlude_cpu_seconds", "culling one view, thread CPU seconds"))
+
+
+def occlusion_section(report, out_dir):
+    scenes = {}
+    for agg in report["aggregates"]:
+        if kind(agg) == "occlude":
+            scenes.setdefault(agg["scene"], []).append(agg)
+    if not scenes:
+        return "", ""
+    parts = ["<h2 id='occlusion'>Occlusion culling by beam tracing</h2>"
+             "<p>The scene tree is walked front to back in the view frustum while a beam tree of the directions "
+             "already covered grows by merging each drawn fragment's cone; hidden fragments and subtrees are "
+             "skipped [Naylor1992]. Every view is proved conservative by Embree primary rays (proof violations "
+             "count rays whose first hit was culled). Emitted / seen says how tight the output is (seen: the "
+             "fragments rays meet first, a lower bound of the visible set); emitted / frustum-culled what occlusion "
+             "adds to frustum culling.</p>"]
+    for scene, aggs in sorted(scenes.items()):
+        png = f"occlusion-{slug(scene)}.png"
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+        for agg in sorted(aggs, key=lambda a: a["heuristic"]):
+            for ax, field in zip(axes, ("emitted_per_seen_mean", "emitted_per_frustum_culled_mean")):
+                pts = [(e["n_polygons"]["mean"], value(e, "metrics", field)) for e in agg["by_n"]]
+                pts = [(x, y) for x, y in pts if y]
+                if pts:
+                    ax.plot(*zip(*pts), marker="o", label=agg["heuristic"])
+        for ax, title in zip(axes, ("emitted / seen by Embree", "emitted / frustum-culled")):
+            ax.set_xscale("log")
+            ax.set_xlabel("polygons (n)")
+            ax.set_ylabel(title)
+            ax.set_title(f"{scene}: {title}", fontsize=9)
+            ax.grid(True, which="both", alpha=0.3)
+        handles, labels = axes[0].get_legend_handles_labels()
+        if handles:
+            fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 9), fontsize=8)
+        fig.tight_layout(rect=(0, 0.1, 1, 1))
+        fig.savefig(os.path.join(out_dir, png), dpi=DPI)
+        plt.close(fig)
+        head = "".join(f"<th title='{html.escape(doc)}'>{html.escape(k)}</th>" for _, k, doc in OCCLUSION_COLUMNS)
+        rows = "".join(
+            f"<tr><td>{html.escape(g['heuristic'])}</td><td>{e['n']}</td><td>{e['runs']}</td>"
+            f"<td>{e['validation_violations']}</td>" + "".join(f"<td>{cell(e[s].get(k))}</td>" for s, k, _ in OCCLUSION_COLUMNS)
+            + "</tr>" for g in sorted(aggs, key=lambda a: a["heuristic"]) for e in g["by_n"])
+        parts.append(f"<h3 id='occlusion-{slug(scene)}'>{html.escape(scene)}</h3>"
+                     f"<img src='{png}' alt='occlusion tightness for {html.escape(scene)}'>"
+                     "<div class=scroll><table><tr><th>heuristic</th><th>n</th><th>runs</th><th>proof violations</th>"
+                     + head + "</tr>" + rows + "</table></div>")
+    return "<li><a href='#occlusion'>occlusion culling</a></li>", "".join(parts)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--in", dest="input", required=True)
@@ -410,9 +605,10 @@ def main():
     scenes = by_scene(report)
     toc = "".join(f"<li><a href='#{slug(s)}'>{html.escape(s)}</a></li>" for s in scenes)
     body = "".join(scene_section(s, aggs, args.out) for s, aggs in scenes.items())
-    merge_toc, merge_body = merge_section(report, args.out)
-    toc += merge_toc
-    body += merge_body
+    for section in (merge_section, dynamic_section, occlusion_section):
+        more_toc, more_body = section(report, args.out)
+        toc += more_toc
+        body += more_body
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>bspbench report</title>{STYLE}</head>"
             f"<body>{header(report)}<ul>{toc}</ul>{body}</body></html>\n")
     tmp = os.path.join(args.out, "index.html.tmp")

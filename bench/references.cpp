@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -69,6 +70,52 @@ double embree_bvh_build_seconds(std::span<const Polygon> polygons, int threads, 
   std::vector<double> times;
   for (int i = 0; i < repeats; ++i) times.push_back(one_bvh_build(device, t));
   rtcReleaseDevice(device);
+  return median(times);
+}
+
+double embree_primary_rays_seconds(std::span<const Polygon> polygons, std::span<const Frustum> views, int grid,
+                                   int repeats) {
+  const Triangles t = triangulate(polygons);
+  RTCDevice device = rtcNewDevice("threads=1");
+  if (!device) throw std::runtime_error("Embree: cannot create a device");
+  RTCScene scene = rtcNewScene(device);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, t.vertices.data(), 0,
+                             3 * sizeof(float), (t.vertices.size() - 1) / 3);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, t.indices.data(), 0,
+                             3 * sizeof(unsigned), t.indices.size() / 3);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  std::vector<double> times;
+  unsigned hits = 0;
+  for (int r = 0; r < repeats; ++r) {
+    const auto start = Clock::now();
+    for (const Frustum& view : views) {
+      const auto c = view.corners();
+      for (int i = 0; i < grid; ++i)
+        for (int j = 0; j < grid; ++j) {
+          const Vec3 d = c[0] + (c[2] - c[0]) * ((i + 0.5) / grid) + (c[1] - c[0]) * ((j + 0.5) / grid) - view.eye;
+          RTCRayHit rh{};
+          rh.ray.org_x = static_cast<float>(view.eye.x), rh.ray.org_y = static_cast<float>(view.eye.y);
+          rh.ray.org_z = static_cast<float>(view.eye.z);
+          rh.ray.dir_x = static_cast<float>(d.x), rh.ray.dir_y = static_cast<float>(d.y), rh.ray.dir_z = static_cast<float>(d.z);
+          rh.ray.tnear = 0.0f;
+          rh.ray.tfar = std::numeric_limits<float>::infinity();
+          rh.ray.mask = ~0u;
+          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          rtcIntersect1(scene, &context, &rh);
+          hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        }
+    }
+    times.push_back(seconds_since(start) / static_cast<double>(std::max<std::size_t>(views.size(), 1)));
+  }
+  rtcReleaseScene(scene);
+  rtcReleaseDevice(device);
+  benchmark::DoNotOptimize(hits);
   return median(times);
 }
 

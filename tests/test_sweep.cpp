@@ -89,6 +89,30 @@ const nlohmann::json& tiny_merge_report() {
   return report;
 }
 
+// 8 animate jobs (city at 100, crystal, rebuild and merge, one and two spheres, two seeds, 4 frames)
+// and 2 occlude jobs (architecture at 100, two seeds).
+Suite tiny_dynamic_suite() {
+  AnimateBlock a;
+  a.scenes = {"city"};
+  a.sizes = {100};
+  a.heuristics = {"crystal"};
+  a.strategies = {"rebuild", "merge"};
+  a.moving = {1, 2};
+  a.speeds = {0.01};
+  a.seeds = {1, 2};
+  a.frames = 4;
+  a.object_n = 24;
+  a.check_every = 1;
+  a.drift_every = 2;
+  a.views = 1;
+  return {"tiny-dynamic", "test suite", {}, {}, {a}, {{{"architecture"}, {100}, {"crystal"}, {1, 2}, 2}}};
+}
+
+const nlohmann::json& tiny_dynamic_report() {
+  static const nlohmann::json report = sweep_once(tiny_dynamic_suite());
+  return report;
+}
+
 // Gives every run the same calibration and five samples of `field` with a known spread around
 // `time` (a job's own scale), times `factor` for the runs of `heuristic` (every run when empty).
 void set_samples(nlohmann::json& report, const std::string& field, double factor, const std::string& heuristic = "",
@@ -184,12 +208,13 @@ TEST(SweepSuites, ExhaustiveVariantsRunBesideTheSampledDefaults) {
   }
 }
 
-// architecture builds one 136-polygon building at every n up to 300: the quick suite runs it once
+// architecture builds one 136-polygon building at every n up to 300: the quick suite draws it once
 // per heuristic, shape and seed, at the smallest of those sizes, while every other scene keeps each size.
 TEST(SweepSuites, SizesThatMakeTheSameSceneRunOnce) {
   std::map<std::string, std::set<std::uint64_t>> sizes;
   for (const auto& j : expand(find_suite("quick")))
-    if (j.heuristic == "crystal" && j.shape == Shape::Strict && j.seed == 1) sizes[j.scene].insert(j.n);
+    if (j.kind() == JobKind::Draw && j.heuristic == "crystal" && j.shape == Shape::Strict && j.seed == 1)
+      sizes[j.scene].insert(j.n);
   EXPECT_EQ(sizes["architecture"], (std::set<std::uint64_t>{100, 1000}));
   EXPECT_EQ(sizes["random-disjoint"], (std::set<std::uint64_t>{100, 300, 1000}));
 }
@@ -294,6 +319,71 @@ TEST(SweepRecord, MergeRunHoldsItsCostItsProofAndMergeSamples) {
   EXPECT_EQ(report["aggregates"].size(), 4u);
   EXPECT_EQ(report["aggregates"][0]["kind"], "merge");
   EXPECT_TRUE(report["aggregates"][0].contains("operation"));
+}
+
+// Animate runs: the frames' sizes, work and drift as metrics, the checked frames' violations, one
+// update sample per frame after the first, and the animate command that repeats the run. Occlude
+// runs: what culling emitted, the Embree proof, and timed batches of culling.
+TEST(SweepRecord, AnimateAndOccludeRunsHoldTheirMeasuresProofsAndSamples) {
+  const nlohmann::json& report = tiny_dynamic_report();
+  ASSERT_EQ(report["runs"].size(), 10u);
+  ASSERT_EQ(report["failures"].size(), 0u);
+  std::size_t animate = 0, occlude = 0;
+  for (const auto& run : report["runs"]) {
+    const auto& id = run["id"];
+    EXPECT_EQ(run["invariants"]["violations"], 0);
+    EXPECT_EQ(run["validation"]["violations"], 0);
+    if (id["kind"] == "animate") {
+      ++animate;
+      EXPECT_EQ(run["timings"]["update_cpu_samples"].size(), 3u);
+      EXPECT_EQ(run["metrics"]["frames_checked"], 4);
+      EXPECT_TRUE(run["metrics"].contains("drift_fragments_ratio"));
+      EXPECT_GT(run["metrics"]["moving_fraction"].get<double>(), 0);
+      EXPECT_NE(id["command"].get<std::string>().find("--strategy " + id["strategy"].get<std::string>()), std::string::npos);
+    } else {
+      ASSERT_EQ(id["kind"], "occlude");
+      ++occlude;
+      EXPECT_GT(run["metrics"]["emitted"].get<std::uint64_t>(), 0u);
+      EXPECT_GE(run["metrics"]["emitted"].get<std::uint64_t>(), run["metrics"]["seen_by_embree"].get<std::uint64_t>());
+      EXPECT_GT(run["validation"]["rays"].get<std::uint64_t>(), 0u);
+      EXPECT_EQ(run["timings"]["occlude_cpu_samples"].size(), static_cast<std::size_t>(kBuildSamples));
+    }
+  }
+  EXPECT_EQ(animate, 8u);
+  EXPECT_EQ(occlude, 2u);
+}
+
+// The gate on animate and occlude runs: a changed result fails, a frame's order violation fails, and
+// slower updates fail their strategy's group.
+TEST(RegressGateDynamic, ChangedWorkOrAViolationFailsAndSlowerUpdatesFailTheirStrategy) {
+  nlohmann::json baseline = tiny_dynamic_report(), current = tiny_dynamic_report();
+  for (auto* r : {&baseline, &current}) {
+    set_samples(*r, "update_cpu_samples", 1.0);
+    set_samples(*r, "occlude_cpu_samples", 1.0);
+  }
+  RegressResult r = compare_reports(baseline, current, {});
+  EXPECT_FALSE(r.failed());
+  EXPECT_EQ(r.timing_groups, 3u);  // rebuild, merge, occlude
+  std::size_t animate_run = 0;
+  while (current["runs"][animate_run]["id"]["kind"] != "animate") ++animate_run;
+  nlohmann::json changed = current;
+  auto& built = changed["runs"][animate_run]["metrics"]["work_nodes_built"];
+  built = built.get<std::uint64_t>() + 1;
+  r = compare_reports(baseline, changed, {});
+  ASSERT_TRUE(r.failed());
+  EXPECT_EQ(r.changes[0].field, "metrics.work_nodes_built");
+  nlohmann::json violated = current, violated_base = baseline;
+  violated["runs"][animate_run]["validation"]["violations"] = 1;
+  violated_base["runs"][animate_run]["validation"]["violations"] = 1;
+  EXPECT_TRUE(compare_reports(violated_base, violated, {}).failed());
+  for (auto& run : current["runs"])
+    if (run["id"].value("strategy", "") == "merge")
+      for (auto& x : run["timings"]["update_cpu_samples"]) x = x.get<double>() * 1.6;
+  r = compare_reports(baseline, current, {});
+  ASSERT_TRUE(r.failed());
+  ASSERT_EQ(r.changes.size(), 1u);
+  EXPECT_EQ(r.changes[0].field, "timings.update_cpu_samples");
+  EXPECT_EQ(r.changes[0].run, "city crystal merge");
 }
 
 TEST(SweepShards, PartitionTheSuiteDeterministically) {
@@ -590,6 +680,13 @@ TEST(SweepReport, ReadingRejectsOtherSchemasVersionsAndDamagedRecords) {
   other["runs"][0]["id"]["kind"] = 3;
   EXPECT_THROW(write_and_read(other), InputError);
   EXPECT_NO_THROW(write_and_read(tiny_merge_report()));
+  EXPECT_NO_THROW(write_and_read(tiny_dynamic_report()));
+  for (const char* damage : {"strategy", "moving", "speed"}) {
+    other = tiny_dynamic_report();
+    for (auto& run : other["runs"])
+      if (run["id"]["kind"] == "animate") run["id"].erase(damage);
+    EXPECT_THROW(write_and_read(other), InputError) << damage;
+  }
   for (const char* damage : {"operation", "operands"}) {
     other = tiny_merge_report();
     other["runs"][0]["id"].erase(damage);

@@ -45,8 +45,8 @@ AnimationSpec animation_spec(const Job& job) {
 
 // The summary's deterministic numbers, flat (nested objects prefixed), so aggregation summarises
 // every field; its timings go to the record's timings.
-nlohmann::json animate_metrics(const nlohmann::json& summary) {
-  nlohmann::json m = nlohmann::json::object();
+nlohmann::json animate_metrics(const nlohmann::json& summary, double moving_fraction) {
+  nlohmann::json m{{"moving_fraction", moving_fraction}};
   for (const char* k : {"frames", "frames_checked", "fragments_first", "fragments_last", "fragments_median",
                         "culled_nodes_visited_median"})
     m[k] = summary[k];
@@ -85,7 +85,7 @@ nlohmann::json run_animate_job(const Job& job) {
                          {"start_cpu_seconds", s["start_cpu_seconds"]}};
   nlohmann::json record{{"key", job.key},
                         {"id", std::move(id)},
-                        {"metrics", animate_metrics(s)},
+                        {"metrics", animate_metrics(s, animation.describe()["moving_fraction"].get<double>())},
                         {"invariants", {{"violations", s["invariant_violations"]}, {"frames_checked", s["frames_checked"]}}},
                         {"validation",
                          {{"violations", s["order_violations"]},
