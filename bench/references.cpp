@@ -40,8 +40,8 @@ Triangles triangulate(std::span<const Polygon> polygons) {
   return t;
 }
 
-double one_bvh_build(RTCDevice device, const Triangles& t) {
-  const auto start = Clock::now();
+// One triangle geometry over the shared buffers, built at MEDIUM quality (Embree's default).
+RTCScene committed_scene(RTCDevice device, const Triangles& t) {
   RTCScene scene = rtcNewScene(device);
   rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -54,6 +54,12 @@ double one_bvh_build(RTCDevice device, const Triangles& t) {
   rtcAttachGeometry(scene, geom);
   rtcReleaseGeometry(geom);
   rtcCommitScene(scene);
+  return scene;
+}
+
+double one_bvh_build(RTCDevice device, const Triangles& t) {
+  const auto start = Clock::now();
+  RTCScene scene = committed_scene(device, t);
   const double seconds = seconds_since(start);
   rtcReleaseScene(scene);
   if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the reference BVH");
@@ -78,16 +84,7 @@ double embree_primary_rays_seconds(std::span<const Polygon> polygons, std::span<
   const Triangles t = triangulate(polygons);
   RTCDevice device = rtcNewDevice("threads=1");
   if (!device) throw std::runtime_error("Embree: cannot create a device");
-  RTCScene scene = rtcNewScene(device);
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, t.vertices.data(), 0,
-                             3 * sizeof(float), (t.vertices.size() - 1) / 3);
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, t.indices.data(), 0,
-                             3 * sizeof(unsigned), t.indices.size() / 3);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(scene);
+  RTCScene scene = committed_scene(device, t);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   std::vector<double> times;

@@ -1,6 +1,7 @@
 #include "dynamic/object_tree.h"
 
 #include <algorithm>
+#include <memory>
 
 #include "tree/build.h"
 
@@ -63,6 +64,27 @@ RigidMotion ObjectTree::motion_to(std::span<const Polygon> now) const {
   Vec3 b[3];
   for (int i = 0; i < 3; ++i) b[i] = now[anchor_[i].first].verts[anchor_[i].second].p;
   return motion_between(anchor_at_start_, b);
+}
+
+std::vector<ObjectTree> build_object_trees(std::span<const Polygon> moving, std::size_t objects,
+                                           const Splitter& splitter) {
+  const std::size_t per = objects ? moving.size() / objects : 0;
+  std::vector<ObjectTree> out;
+  for (std::size_t k = 0; k < objects; ++k) {
+    const std::unique_ptr<Splitter> s = splitter.clone();
+    out.emplace_back(moving.subspan(k * per, per), *s);
+  }
+  return out;
+}
+
+Poses poses_of(std::span<const ObjectTree> objects, std::span<const Polygon> moving) {
+  const std::size_t per = objects.empty() ? 0 : moving.size() / objects.size();
+  Poses p;
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    p.motions.push_back(objects[k].motion_to(moving.subspan(k * per, per)));
+    p.spheres.push_back(objects[k].sphere(p.motions.back()));
+  }
+  return p;
 }
 
 std::uint32_t Placer::moved_plane(const ObjectTree& object, std::uint32_t t_plane, const RigidMotion& m) {

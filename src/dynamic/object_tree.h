@@ -50,6 +50,18 @@ class ObjectTree {
   BoundingSphere sphere_;  // of every vertex at the first pose
 };
 
+// The objects' own trees, each built with a clone of `splitter` from its block of `moving` (objects
+// blocks of equal size, at their first poses).
+std::vector<ObjectTree> build_object_trees(std::span<const Polygon> moving, std::size_t objects,
+                                           const Splitter& splitter);
+
+// Every object's motion from its first pose to the frame's, and its bounding sphere there.
+struct Poses {
+  std::vector<RigidMotion> motions;
+  std::vector<BoundingSphere> spheres;
+};
+Poses poses_of(std::span<const ObjectTree> objects, std::span<const Polygon> moving);
+
 // Where an object ended up when placed (torres keeps it to move the object in place next frame).
 struct Placement {
   bool whole = false;  // hung as one piece in one empty cell: nothing partitioned, nothing shared

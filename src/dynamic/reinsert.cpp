@@ -18,7 +18,7 @@ UpdateWork ReinsertUpdater::start(std::span<const Polygon> static_polys, std::sp
   }
   const std::unique_ptr<Splitter> splitter = splitter_->clone();
   tree_->build_all(std::move(ids), *splitter, work);
-  snapshot_.reset();
+  changed();
   work.seconds = thread_cpu_seconds() - start;
   return work;
 }
@@ -43,14 +43,9 @@ UpdateWork ReinsertUpdater::update(std::span<const Polygon> moving) {
     tree_->remove(owners, *splitter, work);
     for (std::uint32_t k = 0; k < objects_; ++k) insert(k);
   }
-  snapshot_.reset();
+  changed();
   work.seconds = thread_cpu_seconds() - start;
   return work;
-}
-
-const Tree& ReinsertUpdater::tree() const {
-  if (!snapshot_) snapshot_ = tree_->snapshot();
-  return *snapshot_;
 }
 
 }  // namespace bsp

@@ -13,25 +13,21 @@
 #include <memory>
 #include <optional>
 
-#include "dynamic/dynamic_tree.h"
-#include "dynamic/updater.h"
+#include "dynamic/kept_tree.h"
 
 namespace bsp {
 
-class ReinsertUpdater final : public Updater {
+class ReinsertUpdater final : public KeptTreeUpdater {
  public:
   ReinsertUpdater(std::unique_ptr<Splitter> splitter, bool one_at_a_time)
       : splitter_(std::move(splitter)), one_at_a_time_(one_at_a_time) {}
   UpdateWork start(std::span<const Polygon> static_polys, std::span<const Polygon> moving, std::size_t objects) override;
   UpdateWork update(std::span<const Polygon> moving) override;
-  const Tree& tree() const override;
 
  private:
   std::unique_ptr<Splitter> splitter_;
   bool one_at_a_time_;
-  std::optional<DynamicTree> tree_;
   std::size_t objects_ = 0;
-  mutable std::optional<Tree> snapshot_;
 };
 
 }  // namespace bsp

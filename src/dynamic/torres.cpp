@@ -8,15 +8,8 @@ UpdateWork TorresUpdater::start(std::span<const Polygon> static_polys, std::span
                                 std::size_t objects) {
   UpdateWork work;
   const double start = thread_cpu_seconds();
-  const std::size_t per = objects ? moving.size() / objects : 0;
-  tree_.emplace(static_polys, objects, per, bounds_of(static_polys, moving));
-  const std::unique_ptr<Splitter> splitter = splitter_->clone();
-  tree_->build_all({}, *splitter, work);
-  objects_.clear();
-  for (std::uint32_t k = 0; k < objects; ++k) {
-    const std::unique_ptr<Splitter> s = object_splitter_->clone();
-    objects_.emplace_back(moving.subspan(k * per, per), *s);
-  }
+  build_static(static_polys, moving, objects, *splitter_, work);
+  objects_ = build_object_trees(moving, objects, *object_splitter_);
   placements_.assign(objects, Placement{});
   const UpdateWork rest = update(moving);
   work.seconds = thread_cpu_seconds() - start;
@@ -38,13 +31,9 @@ bool TorresUpdater::stays(std::uint32_t k, const BoundingSphere& s) const {
 UpdateWork TorresUpdater::update(std::span<const Polygon> moving) {
   UpdateWork work;
   const double start = thread_cpu_seconds();
-  const std::size_t per = objects_.empty() ? 0 : moving.size() / objects_.size();
-  std::vector<RigidMotion> motions;
-  std::vector<BoundingSphere> spheres;
-  for (std::uint32_t k = 0; k < objects_.size(); ++k) {
-    motions.push_back(objects_[k].motion_to(moving.subspan(k * per, per)));
-    spheres.push_back(objects_[k].sphere(motions.back()));
-  }
+  const Poses poses = poses_of(objects_, moving);
+  const std::vector<RigidMotion>& motions = poses.motions;
+  const std::vector<BoundingSphere>& spheres = poses.spheres;
   Placer placer(*tree_, true);
   std::vector<std::uint32_t> leaving;  // owners
   for (std::uint32_t k = 0; k < objects_.size(); ++k) {
@@ -58,14 +47,10 @@ UpdateWork TorresUpdater::update(std::span<const Polygon> moving) {
     if (owner != kStaticOwner && owner - 1 < placements_.size()) placements_[owner - 1] = Placement{};
   for (const std::uint32_t owner : leaving)
     placements_[owner - 1] = placer.place(objects_[owner - 1], motions[owner - 1], owner - 1, placements_, spheres, work);
-  snapshot_.reset();
+  changed();
   work.seconds = thread_cpu_seconds() - start;
   return work;
 }
 
-const Tree& TorresUpdater::tree() const {
-  if (!snapshot_) snapshot_ = tree_->snapshot();
-  return *snapshot_;
-}
 
 }  // namespace bsp

@@ -11,29 +11,25 @@
 #include <optional>
 #include <vector>
 
-#include "dynamic/dynamic_tree.h"
+#include "dynamic/kept_tree.h"
 #include "dynamic/object_tree.h"
-#include "dynamic/updater.h"
 
 namespace bsp {
 
-class TorresUpdater final : public Updater {
+class TorresUpdater final : public KeptTreeUpdater {
  public:
   // `splitter` builds the static tree, `object_splitter` the objects' trees.
   TorresUpdater(std::unique_ptr<Splitter> splitter, std::unique_ptr<Splitter> object_splitter)
       : splitter_(std::move(splitter)), object_splitter_(std::move(object_splitter)) {}
   UpdateWork start(std::span<const Polygon> static_polys, std::span<const Polygon> moving, std::size_t objects) override;
   UpdateWork update(std::span<const Polygon> moving) override;
-  const Tree& tree() const override;
 
  private:
   bool stays(std::uint32_t k, const BoundingSphere& s) const;
 
   std::unique_ptr<Splitter> splitter_, object_splitter_;
-  std::optional<DynamicTree> tree_;
   std::vector<ObjectTree> objects_;
   std::vector<Placement> placements_;
-  mutable std::optional<Tree> snapshot_;
 };
 
 }  // namespace bsp
