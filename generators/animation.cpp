@@ -24,7 +24,40 @@ void check_spec(const AnimationSpec& s) {
   require(s.size > 0 && s.size <= 0.5, "size must be in (0, 0.5] box diagonals");
   require(s.speed >= 0 && s.speed <= 1, "speed must be in [0, 1] box diagonals per frame");
   require(s.spin >= 0 && s.spin <= std::numbers::pi, "spin must be in [0, pi] radians per frame");
-  require(find_generator(s.object).closed_solid, "object '" + s.object + "' is not a closed solid (bspbench scenes)");
+  require(s.object == kSceneGroups || find_generator(s.object).closed_solid,
+          "object '" + s.object + "' is not a closed solid (bspbench scenes) or '" + std::string(kSceneGroups) + "'");
+}
+
+Vec3 centroid_of(const Polygon& p) {
+  Vec3 c;
+  for (const Vertex& v : p.verts) c += v.p;
+  return c / static_cast<double>(p.verts.size());
+}
+
+// Takes `count` polygons of `scene` out of it: those whose centroids lie nearest to `at` (ties by
+// index), returned about their own centroid.
+std::vector<Polygon> take_group(std::vector<Polygon>& scene, const Vec3& at, std::size_t count) {
+  std::vector<std::size_t> order(scene.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return length(centroid_of(scene[a]) - at) < length(centroid_of(scene[b]) - at);
+  });
+  order.resize(count);
+  std::sort(order.begin(), order.end());
+  std::vector<Polygon> group;
+  Vec3 c;
+  std::size_t n = 0;
+  for (const std::size_t i : order)
+    for (const Vertex& v : scene[i].verts) c += v.p, ++n;
+  c = c / static_cast<double>(n);
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    group.push_back(std::move(scene[*it]));
+    scene.erase(scene.begin() + static_cast<std::ptrdiff_t>(*it));
+  }
+  std::reverse(group.begin(), group.end());
+  for (Polygon& p : group)
+    for (Vertex& v : p.verts) v.p = v.p - c;
+  return group;
 }
 
 // The object's polygons about the origin, scaled so its farthest vertex is at distance 1.
@@ -65,11 +98,19 @@ Animation::Animation(AnimationSpec spec, Scene static_scene) : spec_(std::move(s
     spec_.scene = static_.name;
     spec_.scene_params.clear();
   }
-  object_ = unit_object(spec_);
   const Box box = bounds(static_);
   const double diagonal = box.diagonal();
   radius_ = spec_.size * diagonal;
   step_ = spec_.speed * diagonal;
+  if (spec_.object != kSceneGroups) {
+    std::vector<Polygon> unit = unit_object(spec_);
+    for (Polygon& p : unit)
+      for (Vertex& v : p.verts) v.p = v.p * radius_;
+    locals_.assign(spec_.moving, unit);
+  } else {
+    require(spec_.object_n * spec_.moving <= static_.polygons.size(),
+            "moving * object-n must not exceed the scene's polygons when objects are groups of them");
+  }
   for (std::uint32_t i = 0; i < spec_.moving; ++i) {
     Rng rng(stream_seed(spec_.seed, i));
     Path path;
@@ -81,6 +122,7 @@ Animation::Animation(AnimationSpec spec, Scene static_scene) : spec_(std::move(s
     for (std::size_t w = 0; w < 4; ++w) path.length += length(path.waypoints[(w + 1) % 4] - path.waypoints[w]);
     path.axis = random_axis(rng);
     path.phase = rng.uniform(0, 2 * std::numbers::pi);
+    if (spec_.object == kSceneGroups) locals_.push_back(take_group(static_.polygons, path.waypoints.front(), spec_.object_n));
     paths_.push_back(std::move(path));
   }
 }
@@ -100,9 +142,9 @@ std::vector<Polygon> Animation::object_at(std::size_t i, std::uint32_t frame, st
   const Path& path = paths_.at(i);
   const Vec3 centre = position(path, frame);
   const double angle = path.phase + spec_.spin * static_cast<double>(frame);
-  std::vector<Polygon> out = object_;
+  std::vector<Polygon> out = locals_.at(i);
   for (std::size_t k = 0; k < out.size(); ++k) {
-    for (Vertex& v : out[k].verts) v.p = centre + rotate(v.p, path.axis, angle) * radius_;
+    for (Vertex& v : out[k].verts) v.p = centre + rotate(v.p, path.axis, angle);
     out[k].source = first_source + static_cast<std::uint32_t>(k);
   }
   return out;
@@ -141,7 +183,7 @@ nlohmann::json Animation::describe() const {
           {"frames", spec_.frames},
           {"moving", spec_.moving},
           {"object", spec_.object},
-          {"object_polygons", object_.size()},
+          {"object_polygons", object_polygons()},
           {"radius", radius_},
           {"step", step_},
           {"spin", spec_.spin},

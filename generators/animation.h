@@ -1,6 +1,7 @@
 #pragma once
 // Animated scenes for dynamic-scene measurements: a static scene from the catalog plus K moving
-// closed solids (solids.cpp) that travel along seeded closed paths through the static scene's box,
+// closed solids (solids.cpp), or K groups of the scene's own polygons (kSceneGroups), that travel
+// along seeded closed paths through the static scene's box,
 // crossing it and each other, and spin about seeded axes, for F frames. Everything is a function
 // of the spec: the same spec gives the same frames, bit for bit, everywhere.
 //
@@ -11,6 +12,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -20,11 +22,16 @@
 
 namespace bsp {
 
+// AnimationSpec::object naming groups of the static scene's own polygons instead of a solid: object
+// i is the object_n polygons whose centroids lie nearest to its path's first waypoint, taken out of
+// the static scene (in object order) and moved rigidly about their centroid; `size` does not apply.
+inline constexpr std::string_view kSceneGroups = "scene";
+
 struct AnimationSpec {
   std::string scene;              // a catalog scene or mesh:NAME
   ParamAssignments scene_params;
   std::uint32_t moving = 4;       // K, 0..1000
-  std::string object = "sphere";  // a closed-solid generator
+  std::string object = "sphere";  // a closed-solid generator, or kSceneGroups
   std::uint64_t object_n = 80;    // its `n` (polygons per object, by its count rule)
   double size = 0.04;             // object radius, in box diagonals; (0, 0.5]
   double speed = 0.004;           // path length per frame, in box diagonals; [0, 1]
@@ -44,8 +51,8 @@ class Animation {
 
   const AnimationSpec& spec() const { return spec_; }
   const Scene& static_scene() const { return static_; }
-  std::size_t object_polygons() const { return object_.size(); }  // per moving object
-  std::size_t moving_polygons() const { return object_.size() * paths_.size(); }
+  std::size_t object_polygons() const { return locals_.empty() ? 0 : locals_.front().size(); }  // per moving object
+  std::size_t moving_polygons() const { return object_polygons() * paths_.size(); }
 
   // The moving objects at frame f (any f; paths are closed), object by object, each object's
   // polygons in one block of object_polygons(); `source` numbers them from `first_source`.
@@ -71,7 +78,7 @@ class Animation {
 
   AnimationSpec spec_;
   Scene static_;
-  std::vector<Polygon> object_;  // local coordinates, radius 1 about the origin
+  std::vector<std::vector<Polygon>> locals_;  // per object: its polygons about its centre, at its size
   double radius_ = 0, step_ = 0;
   std::vector<Path> paths_;
 };

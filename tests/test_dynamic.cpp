@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "animation.h"
+#include "catalog.h"
 #include "common/errors.h"
 #include "dynamic/object_tree.h"
 #include "dynamic/updater.h"
@@ -294,4 +295,35 @@ TEST(RigidMotion, RecoversARotationAndATranslationFromThreePoints) {
   const Plane moved = m.apply(p);
   EXPECT_LT(std::abs(moved.distance(turn(q) + shift)), 1e-12);
   EXPECT_LT(length(moved.n - turn(p.n)), 1e-12);
+}
+
+// Objects made of the scene's own polygons: K disjoint groups of object_n polygons leave the static
+// scene (which keeps the rest) and move rigidly (each polygon keeps its area); every strategy keeps
+// them with every frame passing the checks.
+TEST(Animation, SceneGroupsLeaveTheSceneAndMoveRigidly) {
+  AnimationSpec s = small_spec();
+  s.scene = "city";
+  s.object = std::string(kSceneGroups);
+  s.object_n = 20;
+  s.frames = 5;
+  const Animation a(s);
+  const Scene whole = make_scene("city", s.scene_params);
+  ASSERT_EQ(a.static_scene().polygons.size() + 3 * 20, whole.polygons.size());
+  EXPECT_EQ(a.object_polygons(), 20u);
+  const auto first = static_cast<std::uint32_t>(a.static_scene().polygons.size());
+  const std::vector<Polygon> at0 = a.moving_at(0, first), at4 = a.moving_at(4, first);
+  ASSERT_EQ(at0.size(), 60u);
+  double total = 0;
+  for (std::size_t i = 0; i < at0.size(); ++i) {
+    EXPECT_NEAR(area(at0[i]), area(at4[i]), 1e-9 * area(at0[i]));
+    total += area(at0[i]);
+  }
+  double whole_area = 0, static_area = 0;
+  for (const Polygon& p : whole.polygons) whole_area += area(p);
+  for (const Polygon& p : a.static_scene().polygons) static_area += area(p);
+  EXPECT_NEAR(static_area + total, whole_area, 1e-9 * whole_area);
+  for (const auto& strategy : kTreeKeeping) run_strategy(s, strategy, "crystal", true);
+  AnimationSpec too_many = s;
+  too_many.object_n = 100000;
+  EXPECT_THROW(Animation{too_many}, UsageError);
 }

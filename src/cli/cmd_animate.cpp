@@ -108,7 +108,8 @@ Command animate_command() {
                    {"--scene-param k=v", "another parameter of the static scene; repeatable"},
                    {"--moving K", "moving objects (default 4)"},
                    {"--frames F", "frames (default 100)"},
-                   {"--object SOLID", "the moving objects' closed-solid generator (default sphere)"},
+                   {"--object SOLID", "the moving objects' closed-solid generator (default sphere), or 'scene': groups of "
+                                      "--object-n of the scene's own polygons, each taken out of the scene"},
                    {"--object-n N", "its polygon count parameter (default 80)"},
                    {"--size S", "object radius in box diagonals (default 0.04)"},
                    {"--speed V", "distance travelled per frame in box diagonals (default 0.004)"},
