@@ -159,7 +159,8 @@ std::vector<std::array<Vec3, 4>> faces_towards(const Box& box, const Vec3& eye) 
 
 }  // namespace
 
-Occluder::Occluder(const Tree& tree) : tree_(tree), subtree_box_(tree.nodes.size()) {
+Occluder::Occluder(const Tree& tree)
+    : tree_(tree), subtree_box_(tree.nodes.size()), subtree_fragments_(tree.nodes.size(), 0) {
   // Children come after their parent in the pre-order layout, so one backward pass suffices. Boxes
   // grow by plane_eps so that none is flat (a flat face would be a degenerate loop).
   const double m = tree.tol.plane_eps;
@@ -171,6 +172,9 @@ Occluder::Occluder(const Tree& tree) : tree_(tree), subtree_box_(tree.nodes.size
     for (const std::uint32_t c : {tree.nodes[n].front, tree.nodes[n].back})
       if (c != kNull) b.add(subtree_box_[c]);
     if (!b.empty()) b = {b.lo - Vec3{m, m, m}, b.hi + Vec3{m, m, m}};
+    subtree_fragments_[n] = r.size();
+    for (const std::uint32_t c : {tree.nodes[n].front, tree.nodes[n].back})
+      if (c != kNull) subtree_fragments_[n] += subtree_fragments_[c];
   }
 }
 
@@ -196,7 +200,7 @@ std::vector<std::uint32_t> Occluder::visible(const Frustum& view, OcclusionCount
     if (!beam.filter(near_rect, false)) stop = c.covered = true;
   };
   const auto hidden = [&](std::uint32_t n) {
-    if (beam.empty()) return false;
+    if (beam.empty() || subtree_fragments_[n] < kMinSubtreeTest) return false;
     const std::vector<std::array<Vec3, 4>> faces = faces_towards(subtree_box_[n], view.eye);
     if (faces.empty()) return false;
     ++c.subtrees_tested;

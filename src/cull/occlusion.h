@@ -38,6 +38,12 @@ inline constexpr double kBeamBand = 0.5;
 // The walk tests whether the beam covers the view after the first fragment it emits and then after
 // every this many more: each test filters the near rectangle down the whole beam.
 inline constexpr std::uint32_t kCoverTestInterval = 8;
+// A subtree's box is filtered down the beam only when the subtree holds at least this many
+// fragments: a box test costs up to three filters of a face down the whole beam. Measured on crystal's
+// trees at 10^4, 8 metric views: testing every subtree took 0.32 s on city, 64 and up 0.23 s;
+// architecture (interiors, where whole rooms hide) was fastest at 64 (0.092 s; never testing, 0.108 s),
+// city and terrain 5-8% faster never testing.
+inline constexpr std::uint64_t kMinSubtreeTest = 64;
 
 struct OcclusionCounters {
   std::uint64_t nodes_visited = 0;       // scene nodes entered
@@ -63,6 +69,7 @@ class Occluder {
  private:
   const Tree& tree_;
   std::vector<Box> subtree_box_;  // per node, parallel to tree.nodes
+  std::vector<std::uint64_t> subtree_fragments_;  // per node: fragments in its subtree
 };
 
 }  // namespace bsp
