@@ -10,9 +10,13 @@
 // A node's owner is the owner whose fragments or separating plane made it.
 //
 // Invariants between updates: the tree is a valid strict BSP tree of the live fragments (every
-// fragment in its node's plane, every subtree on its side of each ancestor); a node with no
-// fragments separates two non-empty subtrees or is a static node (free planes of the static build);
-// per owner, live fragments = input polygons kept + splits - dropped slivers (BuildStats' identity).
+// fragment in its node's plane, every subtree on its side of each ancestor); a node without
+// fragments is a free plane of a build or a separating plane (torres), owned by whoever made it and
+// removed with it; per owner, live fragments = input polygons kept + splits - dropped slivers
+// (BuildStats' identity), which the snapshot's invariant check verifies.
+//
+// Memory: the plane pool only grows. Every plane a frame adds (moved fragments, object trees moved
+// to their poses) stays in it, 32 bytes each, so a long run's pool outgrows its live planes.
 #include <cstdint>
 #include <span>
 #include <vector>
