@@ -30,6 +30,7 @@ class Beam {
   // every OUT leaf reached is replaced by the beam of the piece that reached it.
   bool filter(std::span<const Vec3> loop, bool merge) {
     if (edge_on(loop)) return true;
+    winding_ = winding(loop);
     bool visible = false;
     stack_.clear();
     stack_.push_back({root_, -1, true, {loop.begin(), loop.end()}});
@@ -67,10 +68,14 @@ class Beam {
     const Vec3 normal = newell_normal(loop);
     const double len = length(normal);
     if (len == 0) return true;
-    Vec3 c;
-    for (const Vec3& v : loop) c += v;
-    c = c / static_cast<double>(loop.size());
-    return std::abs(dot(normal / len, eye_ - c)) <= band_();
+    return std::abs(dot(normal / len, eye_ - loop.front())) <= band_();
+  }
+  // +1 when the eye sees the loop's vertices counter-clockwise (it is in front of the loop's
+  // plane), else -1. Pieces keep their fragment's vertex order, so one sign orients every edge
+  // plane of every piece: no test against a piece's own centroid, which a sliver piece leaves on
+  // the wrong side of its long edges' planes.
+  double winding(std::span<const Vec3> loop) const {
+    return dot(newell_normal(loop), eye_ - loop.front()) > 0 ? 1.0 : -1.0;
   }
   double band_() const { return kBeamBand * eps_; }
 
@@ -107,21 +112,17 @@ class Beam {
   }
 
   // The piece's cone from the eye as a chain of its edge planes, IN at the end (kOutLeaf when no
-  // edge is long enough to give a plane).
+  // edge is long enough to give a plane). For a counter-clockwise loop seen from its front, the
+  // inside of edge (p, q) is where cross(p - eye, q - eye) is negative.
   Ref beam_of(std::span<const Vec3> piece) {
-    Vec3 c;
-    for (const Vec3& v : piece) c += v;
-    c = c / static_cast<double>(piece.size());
     Ref head = kInLeaf;
     for (std::size_t i = piece.size(); i-- > 0;) {
       const Vec3 &p = piece[i], &q = piece[(i + 1) % piece.size()];
       if (length(q - p) <= eps_) continue;
-      const Vec3 n = cross(p - eye_, q - eye_);
+      const Vec3 n = cross(p - eye_, q - eye_) * -winding_;
       const double nl = length(n);
       if (nl == 0) continue;
-      Plane plane{n / nl, -dot(n / nl, eye_)};
-      if (plane.distance(c) < 0) plane = plane.flipped();
-      nodes_.push_back({plane, head, kOutLeaf});
+      nodes_.push_back({Plane{n / nl, -dot(n / nl, eye_)}, head, kOutLeaf});
       head = static_cast<Ref>(nodes_.size() - 1);
     }
     return head == kInLeaf ? kOutLeaf : head;
@@ -129,6 +130,7 @@ class Beam {
 
   Vec3 eye_;
   double eps_;
+  double winding_ = 1;  // of the loop being filtered
   OcclusionCounters& c_;
   std::vector<BeamNode> nodes_;
   Ref root_ = kOutLeaf;
@@ -187,10 +189,24 @@ std::vector<std::uint32_t> Occluder::visible(const Frustum& view, OcclusionCount
   const double eps = tree_.tol.plane_eps;
   std::uint32_t since_cover_test = kCoverTestInterval - 1;  // the first test follows the first insertion
   bool stop = false;
+  // The view volume starts at the near plane: what lies before it is clipped away, so it neither
+  // shows nor hides anything. A fragment is filtered as its part beyond the near plane.
+  const Vec3 look = normalize(view.look);
+  const Plane near_plane{look, -(dot(look, view.eye) + view.near)};
+  std::vector<Vec3> beyond, before;
   auto emit = [&](std::uint32_t i) {
     if (stop) return;
     ++c.fragments_tested;
-    if (!beam.filter(tree_.fragments.points(i), true)) {
+    std::span<const Vec3> piece = tree_.fragments.points(i);
+    if (!in_front_or_on(piece, near_plane, 0)) {
+      split_loop(piece, near_plane, 0, beyond, before);
+      if (beyond.size() < 3) {
+        ++c.fragments_clipped;
+        return;
+      }
+      piece = beyond;
+    }
+    if (!beam.filter(piece, true)) {
       ++c.fragments_hidden;
       return;
     }

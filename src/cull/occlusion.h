@@ -12,15 +12,19 @@
 // inside): the union of B with the fragment's shadow volume, which is Naylor's merge [Naylor1990]
 // of B with a tree of one convex cell, as in shadow volume BSP trees [ChinFeiner1989]. A subtree
 // whose bounding box (side data, never read by traversal) lies wholly in B is skipped, and the walk
-// stops once B covers the view's near rectangle.
+// stops once B covers the view's near rectangle. Fragments are clipped to the view volume's near
+// plane first: a renderer clips what lies before it, so that part neither shows nor hides.
 //
 // Conservative: a piece goes to a side of a beam plane only when it reaches beyond a band of
 // kBeamBand × plane_eps on that side (to both, unsplit, when it lies within the band), and a split
 // part too thin to keep is replaced by the whole piece. So a part of a fragment counted as covered
-// lies behind a drawn fragment, or beside its edge by less than the band: a ray through it passes
-// within plane_eps of the drawn fragment, which the Embree check (validate/embree_scene.h,
-// kInsideEps) counts as meeting it first. A fragment seen edge-on (its plane within the band of
-// the eye) is emitted and covers nothing.
+// lies behind a drawn fragment, or beside its edge by less than the band: at most band / sin(angle
+// between the drawn fragment's plane and the edge's beam plane) from it in its plane, which is
+// within the Embree check's slack of one plane_eps (validate/embree_scene.h, kInsideEps) down to the
+// sine that check itself caps grazing at (1 / kMaxGrazingScale = 1e-3). A fragment seen edge-on (its
+// plane within the band of the eye) is emitted and covers nothing. Edge planes are oriented by the
+// fragment's winding as seen from the eye, never by a piece's centroid, which a sliver piece leaves
+// on the wrong side of its own long edges.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -31,10 +35,11 @@
 
 namespace bsp {
 
-// In plane_eps: far above the rounding of a plane through the eye and two vertices (~1e-16 of
-// their distances), and below the slack within which the Embree check counts a ray as meeting a
-// fragment (one plane_eps).
-inline constexpr double kBeamBand = 0.5;
+// In plane_eps: far above the rounding of a plane through the eye and two vertices (~1e-16 of their
+// distances, ~1e-7 plane_eps), and small enough for the grazing argument above. Half a plane_eps
+// (an earlier value) let a ray 4e-9 beside a terrain fragment seen at a grazing angle count as
+// covered where the proof, rightly, saw the fragment behind.
+inline constexpr double kBeamBand = 1e-3;
 // The walk tests whether the beam covers the view after the first fragment it emits and then after
 // every this many more: each test filters the near rectangle down the whole beam.
 inline constexpr std::uint32_t kCoverTestInterval = 8;
@@ -51,6 +56,7 @@ struct OcclusionCounters {
   std::uint64_t subtrees_culled = 0;     // of those, hidden: skipped with everything in them
   std::uint64_t fragments_tested = 0;    // fragments filtered down the beam
   std::uint64_t fragments_hidden = 0;    // of those, wholly inside it
+  std::uint64_t fragments_clipped = 0;   // of those, wholly before the near plane (neither shown nor hiding)
   std::uint64_t fragments_emitted = 0;   // potentially visible, in the output
   std::uint64_t beam_merges = 0;         // OUT leaves replaced by a piece's beam
   std::uint64_t beam_nodes = 0;          // the beam's size at the end

@@ -37,6 +37,7 @@ nlohmann::json occlusion_view(const Tree& tree, const Occluder& occluder, const 
           {"subtrees_culled", c.subtrees_culled},
           {"fragments_tested", c.fragments_tested},
           {"fragments_hidden", c.fragments_hidden},
+          {"fragments_clipped", c.fragments_clipped},
           {"beam_merges", c.beam_merges},
           {"beam_nodes", c.beam_nodes},
           {"beam_steps", c.beam_steps},
