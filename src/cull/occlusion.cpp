@@ -111,17 +111,25 @@ class Beam {
     else (front ? nodes_[static_cast<std::size_t>(parent)].front : nodes_[static_cast<std::size_t>(parent)].back) = child;
   }
 
-  // The piece's cone from the eye as a chain of its edge planes, IN at the end (kOutLeaf when no
-  // edge is long enough to give a plane). For a counter-clockwise loop seen from its front, the
-  // inside of edge (p, q) is where cross(p - eye, q - eye) is negative.
+  // The piece's cone from the eye as a chain of its edge planes, IN at the end. For a
+  // counter-clockwise loop seen from its front, the inside of edge (p, q) is where
+  // cross(p - eye, q - eye) = cross(p - eye, q - p) is negative; the second form keeps a short edge
+  // accurate (q - p of two nearby doubles is exact), where the first would cancel. A repeated
+  // vertex gives no plane (its neighbours meet there); an edge pointing at the eye gives no
+  // accurate one and refuses the beam (kOutLeaf): leaving its plane out would widen the cone.
   Ref beam_of(std::span<const Vec3> piece) {
+    const std::size_t first = nodes_.size();
     Ref head = kInLeaf;
     for (std::size_t i = piece.size(); i-- > 0;) {
       const Vec3 &p = piece[i], &q = piece[(i + 1) % piece.size()];
-      if (length(q - p) <= eps_) continue;
-      const Vec3 n = cross(p - eye_, q - eye_) * -winding_;
+      if (p == q) continue;
+      const Vec3 n = cross(p - eye_, q - p) * -winding_;
       const double nl = length(n);
-      if (nl == 0) continue;
+      if (!(nl > kMinEdgeSine * length(p - eye_) * length(q - p))) {
+        nodes_.resize(first);
+        ++c_.beams_refused;
+        return kOutLeaf;
+      }
       nodes_.push_back({Plane{n / nl, -dot(n / nl, eye_)}, head, kOutLeaf});
       head = static_cast<Ref>(nodes_.size() - 1);
     }

@@ -40,6 +40,12 @@ namespace bsp {
 // (an earlier value) let a ray 4e-9 beside a terrain fragment seen at a grazing angle count as
 // covered where the proof, rightly, saw the fragment behind.
 inline constexpr double kBeamBand = 1e-3;
+// The sine between a piece's edge and the line of sight to it below which the edge gives no beam
+// plane: the plane's direction, cross(p - eye, q - p), carries a relative error near 1e-16 / sine,
+// which at ten scene diagonals from the eye must stay below the band (1e-12 diagonals). Such a
+// piece covers nothing (OcclusionCounters::beams_refused): leaving the edge's plane out would widen
+// its cone past the edge.
+inline constexpr double kMinEdgeSine = 1e-3;
 // The walk tests whether the beam covers the view after the first fragment it emits and then after
 // every this many more: each test filters the near rectangle down the whole beam.
 inline constexpr std::uint32_t kCoverTestInterval = 8;
@@ -62,6 +68,7 @@ struct OcclusionCounters {
   std::uint64_t beam_nodes = 0;          // the beam's size at the end
   std::uint64_t beam_steps = 0;          // beam nodes passed while filtering (the culling's work)
   std::uint64_t beam_splits = 0;         // pieces cut in two by beam planes
+  std::uint64_t beams_refused = 0;       // visible pieces too thin to give a beam (kMinEdgeSine)
   bool covered = false;                  // the walk stopped because the beam covered the view
 };
 

@@ -28,6 +28,7 @@ nlohmann::json occlusion_view(const Tree& tree, const Occluder& occluder, const 
           {"missed_rays", proof.missed_rays},
           {"rays", proof.rays},
           {"rays_hitting", proof.rays_hitting},
+          {"rays_rechecked", proof.rays_rechecked},
           {"problems", proof.first_problems},
           {"cpu_seconds", seconds},
           {"frustum_cpu_seconds", frustum_seconds},
@@ -42,6 +43,7 @@ nlohmann::json occlusion_view(const Tree& tree, const Occluder& occluder, const 
           {"beam_nodes", c.beam_nodes},
           {"beam_steps", c.beam_steps},
           {"beam_splits", c.beam_splits},
+          {"beams_refused", c.beams_refused},
           {"covered", c.covered}};
 }
 

@@ -29,6 +29,36 @@ std::vector<Ray> occlusion_rays(const Tree& tree, const Frustum& view, const Occ
   return rays;
 }
 
+// The hits of a ray inside the view volume (what lies before the near plane or past the far one is
+// clipped away), nearest first.
+std::vector<Hit> in_view(std::span<const Hit> hits, const Ray& ray, const Frustum& view, const Vec3& look) {
+  std::vector<Hit> out;
+  for (const Hit& h : hits) {
+    const double z = dot(ray.dir * h.t, look);
+    if (z >= view.near && z <= view.far) out.push_back(h);
+  }
+  return out;
+}
+
+// Every fragment's exact hit by the ray, without Embree, sorted as all_hits sorts: for the rays whose
+// Embree candidates cannot be trusted.
+std::vector<Hit> exhaustive_hits(const EmbreeScene& scene, const Ray& ray) {
+  std::vector<Hit> out;
+  for (std::uint32_t f = 0; f < scene.fragment_count(); ++f)
+    if (const auto h = scene.hit(ray, f)) out.push_back(*h);
+  std::sort(out.begin(), out.end(), [](const Hit& a, const Hit& b) { return a.t != b.t ? a.t < b.t : a.fragment < b.fragment; });
+  return out;
+}
+
+// Whether the first hit, or one tied with it, is in the set.
+bool first_in_set(const EmbreeScene& scene, const Ray& ray, const std::vector<Hit>& hits, const std::vector<bool>& in_set) {
+  const Hit& first = hits.front();
+  bool ok = in_set[first.fragment];
+  for (std::size_t k = 1; k < hits.size() && !ok; ++k)
+    ok = in_set[hits[k].fragment] && scene.tie_reason(ray, first, hits[k]) != TieReason::None;
+  return ok;
+}
+
 }  // namespace
 
 OcclusionCheck check_occlusion(const Tree& tree, const Frustum& view, std::span<const std::uint32_t> emitted,
@@ -45,20 +75,23 @@ OcclusionCheck check_occlusion(const Tree& tree, const Frustum& view, std::span<
   scene.all_hits(rays, batch);
   const Vec3 look = normalize(view.look);
   for (std::size_t r = 0; r < rays.size(); ++r) {
-    // Hits outside the view volume (before the near plane, past the far one) are clipped away.
-    std::vector<Hit> hits;
-    for (const Hit& h : batch.of(r)) {
-      const double z = dot(rays[r].dir * h.t, look);
-      if (z >= view.near && z <= view.far) hits.push_back(h);
+    std::vector<Hit> hits = in_view(batch.of(r), rays[r], view, look);
+    if (hits.empty()) continue;
+    if (first_in_set(scene, rays[r], hits, in_set)) {
+      ++out.rays_hitting;
+      seen[hits.front().fragment] = true;
+      continue;
     }
+    // Embree proposes candidates in floats, and a ray meeting a fragment's plane at a grazing angle
+    // may lose its candidate (embree_scene.h): before a ray counts as missed, its hits are
+    // recomputed exactly against every fragment.
+    ++out.rays_rechecked;
+    hits = in_view(exhaustive_hits(scene, rays[r]), rays[r], view, look);
     if (hits.empty()) continue;
     ++out.rays_hitting;
     const Hit& first = hits.front();
     seen[first.fragment] = true;
-    bool ok = in_set[first.fragment];
-    for (std::size_t k = 1; k < hits.size() && !ok; ++k)
-      ok = in_set[hits[k].fragment] && scene.tie_reason(rays[r], first, hits[k]) != TieReason::None;
-    if (ok) continue;
+    if (first_in_set(scene, rays[r], hits, in_set)) continue;
     ++out.missed_rays;
     if (!missed[first.fragment] && out.first_problems.size() < 10)
       out.first_problems.push_back("fragment " + std::to_string(first.fragment) + " is seen by ray " +

@@ -23,6 +23,9 @@ struct OcclusionCheckSettings {
 struct OcclusionCheck {
   std::uint64_t rays = 0;               // cast
   std::uint64_t rays_hitting = 0;       // with a hit inside the view volume
+  // Rays whose Embree hits did not show an emitted first hit, recomputed exactly against every
+  // fragment: Embree's float candidates can lose a fragment met at a grazing angle.
+  std::uint64_t rays_rechecked = 0;
   std::uint64_t missed_rays = 0;        // whose first hit (and all tied with it) is not in the set
   std::uint64_t missed_fragments = 0;   // distinct fragments first hit by a missed ray
   std::uint64_t seen_fragments = 0;     // distinct fragments first hit by some ray
