@@ -120,8 +120,9 @@ std::vector<SceneSizes> default_sizes() {
 
 Suite default_suite() {
   return {"default",
-          "14 min on 2 shared cores (3,366 runs): every scene and heuristic and the exhaustive scorers, 4 sizes to "
-          "3*10^3 (near-degenerate to 10^3), 3 seeds, 2 views (1 past 10^3); merges of every solid pair to 10^3",
+          "18 min on 2 shared cores (3,708 runs): every scene and heuristic and the exhaustive scorers, 4 sizes to "
+          "3*10^3 (near-degenerate to 10^3), 3 seeds, 2 views (1 past 10^3); merges of every solid pair to 10^3; every "
+          "update strategy and occlusion culling at 10^3 (occlusion also 3*10^3)",
           {{{}, {}, {100, 300, 1000, 3000}, default_sizes(), {1, 2, 3}, {Shape::Strict}, {2, 1000, 1}},
            {{}, kExhaustive, {100, 300, 1000, 3000}, default_sizes(), {1, 2, 3}, {Shape::Strict}, {2, 1000, 1}}},
           {{{}, {}, {}, {100, 300, 1000}, {1, 2, 3}, 10000}},
