@@ -159,7 +159,8 @@ Suite dynamic_suite() {
 // culling a city from outside takes seconds a view: bspbench_bench_occlusion measures those sizes.
 Suite occlusion_suite() {
   return {"occlusion",
-          "measured below: occlusion culling on architecture, city and terrain at 10^3 to 10^4, every heuristic, "
+          "13 min 17 s on 2 shared cores (243 runs): occlusion culling on architecture, city and terrain at 10^3 to "
+          "10^4, every heuristic, "
           "3 seeds, 8 views",
           {},
           {},
