@@ -76,7 +76,8 @@ Selection take_selection(int& argc, char** argv, Selection defaults) {
   }
   argc = kept;
   if (defaults.scenes.empty())
-    for (const auto& g : generators()) defaults.scenes.push_back(g.name);
+    for (const auto& g : generators())
+      if (!g.segments) defaults.scenes.push_back(g.name);
   if (defaults.heuristics.empty())
     for (const auto& h : heuristics()) defaults.heuristics.push_back(h.name);
   for (const auto& h : defaults.heuristics) find_heuristic(h);

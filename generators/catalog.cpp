@@ -11,6 +11,7 @@ const std::vector<GeneratorInfo>& generators() {
       random_triangles_generator(),
       cyclic_overlap_generator(),
       random_disjoint_generator(),
+      random_segments_generator(),
       architecture_generator(),
       city_generator(),
       terrain_generator(),

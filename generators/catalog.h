@@ -24,6 +24,9 @@ struct GeneratorInfo {
   bool constant_density = false;
   // Whether the surface is closed and faces outwards, so it can become a solid tree (solids.cpp).
   bool closed_solid = false;
+  // Whether the scene is 2D: segments at z = 0 (geometry/segment2.h). Suite blocks and benchmarks
+  // that name no scenes run only 3D ones; 2D scenes are measured where a block names them.
+  bool segments = false;
 };
 
 const std::vector<GeneratorInfo>& generators();
@@ -41,6 +44,7 @@ ParamSpec seed_param();
 GeneratorInfo random_triangles_generator();
 GeneratorInfo cyclic_overlap_generator();
 GeneratorInfo random_disjoint_generator();
+GeneratorInfo random_segments_generator();
 GeneratorInfo architecture_generator();
 GeneratorInfo city_generator();
 GeneratorInfo terrain_generator();

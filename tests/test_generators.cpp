@@ -23,6 +23,7 @@
 
 #include "catalog.h"
 #include "common/errors.h"
+#include "geometry/segment2.h"
 #include "split/registry.h"
 #include "tree/build.h"
 #include "tree/traverse.h"
@@ -156,6 +157,7 @@ const std::map<std::string, ParamAssignments>& small_instances() {
       {"random-triangles", {{"n", "200"}}},
       {"cyclic-overlap", {{"n", "150"}}},
       {"random-disjoint", {{"n", "300"}}},
+      {"random-segments", {{"n", "300"}}},
       {"architecture", {{"n", "400"}}},
       {"city", {{"n", "300"}}},
       {"terrain", {{"n", "400"}, {"overhangs", "3"}}},
@@ -185,6 +187,7 @@ TEST(GeneratorDeterminism, PinnedHashesAtFixedParameters) {
       {"random-triangles", {{"n", "500"}, {"seed", "7"}}, "4212291f1903b5ff"},
       {"cyclic-overlap", {{"n", "500"}, {"seed", "7"}}, "950d4e85f5a94f09"},
       {"random-disjoint", {{"n", "500"}, {"seed", "7"}}, "6e5114954d794183"},
+      {"random-segments", {{"n", "500"}, {"seed", "7"}}, "280d8b4f352f9a48"},
       {"architecture", {{"n", "2000"}, {"seed", "7"}, {"stories", "3"}}, "28b9fbe4155755fb"},
       {"city", {{"n", "500"}, {"seed", "7"}}, "6c14e7696fc6baf8"},
       {"terrain", {{"n", "500"}, {"seed", "7"}, {"overhangs", "4"}}, "2fe74a1c6850f18d"},
@@ -251,6 +254,7 @@ TEST(GeneratorCounts, FollowTheirCountRules) {
       {"random-triangles", [](std::size_t n) { return n; }},
       {"cyclic-overlap", [](std::size_t n) { return 3 * std::max<std::size_t>(1, n / 3); }},
       {"random-disjoint", [](std::size_t n) { return n; }},
+      {"random-segments", [](std::size_t n) { return n; }},
       {"architecture",
        [](std::size_t n) {  // default stories = 2
          auto total = [](std::size_t g) { return 2 * (24 * g * g + 38 * g + 4) + 4 * g * g; };
@@ -410,7 +414,9 @@ TEST_P(EveryScene, PassesOrderValidationWithFirstAndRandom) {
   quick.cube_grid = 10;
   for (const std::string heuristic : {"first", "random"}) {
     const Tree tree = build(scene.polygons, heuristic);
-    const ValidationReport r = validate_tree(tree, quick);
+    const ValidationReport r = all_segments(scene.polygons)
+                                   ? validate_segment_tree(tree, validation_eyes(tree.bounds, quick.views), quick)
+                                   : validate_tree(tree, quick);
     EXPECT_TRUE(r.ok()) << heuristic << ": " << r.violations << " violations, first "
                         << (r.first_problems.empty() ? "" : r.first_problems.front());
     EXPECT_GT(r.pairs_checked, 0u) << heuristic;

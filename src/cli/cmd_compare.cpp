@@ -157,7 +157,7 @@ nlohmann::json header(const CompareSpec& s, const std::vector<Scene>& scenes) {
           {"scene_params", params},
           {"seeds", seeds},
           {"scenes", scene_instances(s, scenes)},
-          {"shape", s.options.shape == Shape::Coarse ? "coarse" : "strict"},
+          {"shape", shape_name(s.options.shape)},
           {"build", s.options.incremental ? "incremental" : "recursive"},
           {"order", s.options.order == InsertOrder::Shuffled ? "shuffled" : "given"},
           {"cell_margin", s.metrics.cell_margin},
@@ -219,7 +219,7 @@ int run(Args& args) {
 Command compare_command() {
   static const std::string usage =
       "--scene NAME [--n N] [--seed S] [--scene-param k=v]... (--heuristics all|NAME[,NAME]... | --incremental "
-      "[--order given|shuffled]) [--seeds K] [--shape strict|coarse] " +
+      "[--order given|shuffled]) [--seeds K] [--shape strict|coarse|leafy] " +
       std::string(kMetricsUsage) + " [--json]";
   static const OptionHelps own = {
       {"--scene NAME", kSceneOptions[0].meaning},

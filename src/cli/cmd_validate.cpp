@@ -1,10 +1,11 @@
 // bspbench validate: build a tree and check its back-to-front orders from several eyes against
-// Embree ray casts (validate/order_check.h). Exit code 1 when any pair is drawn in the wrong order.
+// Embree ray casts (validate/order_check.h); a 2D scene's segments as walls seen from eyes in its plane. Exit code 1 when any pair is drawn in the wrong order.
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "cli/run_args.h"
+#include "geometry/segment2.h"
 #include "validate/order_check.h"
 
 namespace bsp::cli {
@@ -23,7 +24,9 @@ int run(Args& args) {
   const TreeArgs t = tree_args_from(args, seed);
   args.finish();
   const Tree tree = build_from_args(scene, t);
-  const ValidationReport report = validate_tree(tree, settings);
+  const ValidationReport report = all_segments(scene.polygons)
+                                      ? validate_segment_tree(tree, validation_eyes(tree.bounds, settings.views), settings)
+                                      : validate_tree(tree, settings);
   nlohmann::json out = describe_run(scene, t);
   out.update(to_json(report));
   if (json) {

@@ -72,9 +72,10 @@ TreeArgs tree_args_from(Args& args, std::uint64_t seed) {
 }
 
 Shape shape_from(Args& args) {
-  const std::string shape = args.option("--shape").value_or("strict");
-  if (shape != "strict" && shape != "coarse") throw UsageError("--shape must be strict or coarse, not '" + shape + "'");
-  return shape == "coarse" ? Shape::Coarse : Shape::Strict;
+  const std::string name = args.option("--shape").value_or("strict");
+  const auto shape = shape_named(name);
+  if (!shape) throw UsageError("--shape must be strict, coarse or leafy, not '" + name + "'");
+  return *shape;
 }
 
 BuildOptions build_options_from(Args& args, std::uint64_t seed) {
@@ -87,6 +88,7 @@ BuildOptions build_options_from(Args& args, std::uint64_t seed) {
     throw UsageError("--order must be given or shuffled, not '" + *order + "'");
   options.order = order == "shuffled" ? InsertOrder::Shuffled : InsertOrder::Given;
   options.order_seed = insertion_order_seed(seed);
+  if (options.incremental && options.shape == Shape::Leafy) throw UsageError("--shape leafy builds recursively: drop --incremental");
   return options;
 }
 
@@ -124,7 +126,7 @@ nlohmann::json describe_run(const Scene& scene, const TreeArgs& t) {
           {"scene_bounds", s["bounds"]},
           {"heuristic", t.heuristic},
           {"heuristic_params", params},
-          {"shape", t.options.shape == Shape::Coarse ? "coarse" : "strict"},
+          {"shape", shape_name(t.options.shape)},
           {"build", t.options.incremental ? "incremental" : "recursive"},
           {"order", t.options.order == InsertOrder::Shuffled ? "shuffled" : "given"},
           {"seed", t.seed}};

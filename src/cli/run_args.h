@@ -1,7 +1,7 @@
 #pragma once
 // The options shared by every command that builds a tree:
 //   --scene NAME [--n N] [--seed S] [--scene-param k=v]...  |  --input FILE
-//   (--heuristic NAME [--param k=v]... | --incremental [--order given|shuffled]) [--shape strict|coarse]
+//   (--heuristic NAME [--param k=v]... | --incremental [--order given|shuffled]) [--shape strict|coarse|leafy]
 // An incremental build consults no heuristic (tree/build_incremental.h: the insertion order picks
 // the planes), so --heuristic with --incremental is a usage error and the run is labelled with the
 // heuristic "incremental" in every JSON.
@@ -20,7 +20,7 @@ namespace bsp::cli {
 inline constexpr std::string_view kSceneUsage =
     "(--scene NAME [--n N] [--seed S] [--scene-param k=v]... | --input FILE)";
 inline constexpr std::string_view kTreeUsage =
-    "(--heuristic NAME [--param k=v]... | --incremental [--order given|shuffled]) [--shape strict|coarse]";
+    "(--heuristic NAME [--param k=v]... | --incremental [--order given|shuffled]) [--shape strict|coarse|leafy]";
 
 inline const OptionHelps kSceneOptions = {
     {"--scene NAME", "a generated scene (bspbench scenes lists them) or mesh:NAME"},
@@ -29,7 +29,7 @@ inline const OptionHelps kSceneOptions = {
     {"--scene-param k=v", "set another generator parameter; repeatable"},
     {"--input FILE", "read the polygons from a mesh file (OBJ, OFF, PLY, STL) instead of --scene"}};
 inline const OptionHelps kBuildModeOptions = {
-    {"--shape strict|coarse", "one plane per node, or convex sets of polygons in the leaves (default strict)"},
+    {"--shape strict|coarse|leafy", "one plane per node, convex sets of polygons in the leaves, or every polygon in a convex leaf (default strict)"},
     {"--incremental", "insert the polygons one at a time (Thibault-Naylor); no heuristic is consulted"},
     {"--order given|shuffled", "insertion order of an --incremental build: as read, or seeded shuffle"}};
 inline const OptionHelps kTreeOptions = {
@@ -51,7 +51,7 @@ TreeArgs tree_args_from(Args& args, std::uint64_t seed);
 // that does not name a heuristic, for commands that run several).
 BuildOptions build_options_from(Args& args, std::uint64_t seed);
 Tree build_from_args(const Scene& scene, const TreeArgs& t);
-// --shape strict|coarse alone (default strict), for commands whose builds are never incremental.
+// --shape strict|coarse|leafy alone (default strict), for commands whose builds are never incremental.
 Shape shape_from(Args& args);
 // A catalog scene or mesh:NAME with "k=v" parameters, else a mesh file (which takes none: a
 // UsageError naming `option`); checked with check_scene.

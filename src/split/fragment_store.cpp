@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "geometry/segment2.h"
+
 namespace bsp {
 
 BoundingSphere bounding_sphere(const Polygon& poly) {
@@ -113,7 +115,8 @@ FragmentStore::Parts FragmentStore::split(std::uint32_t id, const Plane& plane, 
   view(id).copy_to(whole_);
   const std::uint32_t support = plane_[id];
   release(id);
-  const SplitKept kept = split_into(whole_, plane, eps, front_, back_);
+  const SplitKept kept = whole_.verts.size() == 2 ? split_segment_into(whole_, plane, eps, front_, back_)
+                                                 : split_into(whole_, plane, eps, front_, back_);
   Parts parts;
   parts.dropped = kept.dropped;
   parts.dropped_area = kept.dropped_area;

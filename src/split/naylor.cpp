@@ -17,6 +17,12 @@
 // The cells along the previous node's path are kept, and the build is depth-first, so a node's
 // cell costs one clip of its parent's. Cost per node: O(m log m) + O(k·s) (s = sample, or m)
 // classifications + k measures and one clip of a cell with O(depth) faces.
+//
+// 2D scenes (segments, geometry/segment2.h; the scene box has no height) are measured on prisms:
+// the root cell's box is grown by `margin` in z as well, so a cell is its 2D cell times a height h.
+// Volume ratios are then area ratios, and model=area takes the perimeter P = (S - 2V/h)/h from the
+// prism's surface S and volume V: Crofton's formula in the plane measures the lines meeting a
+// convex set by its perimeter.
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -62,7 +68,7 @@ class NaylorSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     update_cell(ctx);
-    const double whole = measure(cells_.back());
+    const double whole = measure(cells_.back().volume(), cells_.back().surface_area());
     Rng rng(stream_seed(seed_, ctx.node_key));
     const auto candidates = candidate_fragments(ctx, s_.candidates, rng);
     const SideCounter count(ctx, s_.sample, rng);
@@ -74,16 +80,19 @@ class NaylorSplitter final : public Splitter {
   }
 
  private:
-  double measure(const ConvexPolytope& cell) const {
-    return s_.model == Model::Volume ? cell.volume() : cell.surface_area();
+  // The cell's measure from its volume and surface: those in 3D, its 2D area or perimeter in 2D
+  // (prism_height_ > 0).
+  double measure(double volume, double surface) const {
+    if (s_.model == Model::Volume) return volume;
+    if (prism_height_ == 0) return surface;
+    return (surface - 2 * volume / prism_height_) / prism_height_;
   }
 
   // P⁺ and P⁻ of a candidate plane, from one pass over the cell's faces (no child polytope is built).
   std::pair<double, double> probabilities(const SplitContext& ctx, const Plane& p, double whole) const {
     if (!(whole > 0)) return {kEvenProbability, kEvenProbability};
     const ConvexPolytope::SplitMeasure m = cells_.back().measure_split(p, ctx.tol.plane_eps);
-    if (s_.model == Model::Volume) return {m.front_volume / whole, m.back_volume / whole};
-    return {m.front_area / whole, m.back_area / whole};
+    return {measure(m.front_volume, m.front_area) / whole, measure(m.back_volume, m.back_area) / whole};
   }
 
   // f(n), the cost charged for a child holding n fragments. Naylor's recursion wants the children's
@@ -111,7 +120,11 @@ class NaylorSplitter final : public Splitter {
     const auto& want = ctx.cell_planes;
     std::size_t shared = 0;
     while (shared < want.size() && shared < path_.size() && want[shared] == path_[shared]) ++shared;
-    if (cells_.empty()) cells_.push_back(ConvexPolytope::box(ctx.scene_box.enlarged(s_.margin)));
+    if (cells_.empty()) {
+      const Box root = ctx.scene_box.enlarged(s_.margin);
+      if (ctx.scene_box.hi.z == ctx.scene_box.lo.z) prism_height_ = root.hi.z - root.lo.z;
+      cells_.push_back(ConvexPolytope::box(root));
+    }
     cells_.resize(shared + 1);
     for (std::size_t i = shared; i < want.size(); ++i)
       cells_.push_back(cells_.back().clipped(ctx.planes[want[i]], ctx.tol.plane_eps));
@@ -122,6 +135,7 @@ class NaylorSplitter final : public Splitter {
   std::uint64_t seed_;
   std::vector<std::uint32_t> path_;     // the planes the previous node's cell was cut by
   std::vector<ConvexPolytope> cells_;  // cells_[i]: the root cell cut by path_[0, i)
+  double prism_height_ = 0;            // 2D scenes: the height of the prisms cells are measured on
 };
 
 }  // namespace
@@ -130,7 +144,9 @@ HeuristicInfo naylor_heuristic() {
   return {"naylor",
           "Naylor 1993 expected cost: min 1 + P-*f(n-) + P+*f(n+), P from exact cell volume or surface area",
           {{"model", ParamSpec::Kind::Choice,
-            "probability of entering a child: volume (point location) or area (random lines, Crofton)", 0, 0, 0,
+            "probability of entering a child: volume (point location) or area (random lines, Crofton); in 2D "
+            "scenes the cell's area and perimeter",
+            0, 0, 0,
             {"volume", "area"}},
            {"estimate", ParamSpec::Kind::Choice,
             "subtree cost estimate f(n): nlogn = n*log2(n+1), linear = n (SAH-like), log = log2(n+1) (balanced depth)",

@@ -42,7 +42,7 @@ std::vector<std::string> scene_names(const SuiteBlock& block) {
   if (!block.scenes.empty()) return block.scenes;
   std::vector<std::string> all;
   for (const auto& g : generators())
-    if (!g.closed_solid) all.push_back(g.name);
+    if (!g.closed_solid && !g.segments) all.push_back(g.name);
   return all;
 }
 
@@ -155,7 +155,6 @@ void expand_block(const SuiteBlock& block, std::vector<Job>& out) {
   }
 }
 
-const char* shape_name(Shape s) { return s == Shape::Coarse ? "coarse" : "strict"; }
 
 ParamSet operand_params(const SolidOperand& o) {
   return ParamSet::resolve(find_generator(o.scene).params, o.params, "scene " + o.scene);

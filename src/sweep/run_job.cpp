@@ -9,6 +9,7 @@
 
 #include "catalog.h"
 #include "common/errors.h"
+#include "geometry/segment2.h"
 #include "metrics/statistics.h"
 #include "metrics/tree_metrics.h"
 #include "split/registry.h"
@@ -41,10 +42,12 @@ ValidationSettings validation_settings(const Job& job) {
   return settings;
 }
 
-// null when the job asks for no views.
-nlohmann::json validation_json(const Tree& tree, const Job& job, nlohmann::json& timings) {
+// null when the job asks for no views. A 2D tree is seen as walls from eyes in its plane.
+nlohmann::json validation_json(const Tree& tree, const Job& job, bool flat, nlohmann::json& timings) {
   if (job.validation_views == 0) return nullptr;
-  nlohmann::json v = to_json(validate_tree(tree, validation_settings(job)));
+  const ValidationSettings settings = validation_settings(job);
+  nlohmann::json v = to_json(flat ? validate_segment_tree(tree, validation_eyes(tree.bounds, settings.views), settings)
+                                  : validate_tree(tree, settings));
   split_timings(v, timings, "validation_");
   return v;
 }
@@ -138,8 +141,11 @@ nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& pla
 
   MetricsSettings metric_settings;  // the defaults, with the job's seed for the metric rays
   metric_settings.seed = job.seed;
+  // The query costs are defined for 3D scenes (cells, frustums and rays in space); a 2D tree gets
+  // its size and shape.
+  const bool flat = all_segments(scene.polygons);
   const double cpu = thread_cpu_seconds();
-  nlohmann::json metrics = to_json(measure_tree(tree, metric_settings));
+  nlohmann::json metrics = to_json(flat ? measure_tree(tree) : measure_tree(tree, metric_settings));
   timings["metrics_cpu_seconds"] = thread_cpu_seconds() - cpu;
   split_timings(metrics, timings, "");
   nlohmann::json id = job_identity(job);
@@ -151,8 +157,8 @@ nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& pla
                         {"id", std::move(id)},
                         {"metrics", std::move(metrics)},
                         {"invariants", invariants_json(tree, scene)},
-                        {"validation", validation_json(tree, job, timings)},
-                        {"ray_shooting", ray_shooting_json(tree, job)}};
+                        {"validation", validation_json(tree, job, flat, timings)},
+                        {"ray_shooting", flat ? nullptr : ray_shooting_json(tree, job)}};
   timings["job_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   record["timings"] = std::move(timings);
   return record;

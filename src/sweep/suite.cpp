@@ -188,11 +188,24 @@ Suite full() {
            {{"random-disjoint", "sphere-field"}, {"halving"}, {30000, 100000}, {}, {1, 2, 3}, {Shape::Strict}, {1, 0, 1}}}};
 }
 
+// 2D segments only. The random autopartition of n disjoint segments against Paterson and Yao's
+// bound n + 2n ln n, from 10^2 to 10^6 over 5 seeds; and every heuristic in every shape at 10^3
+// and 10^4.
+Suite segments_suite() {
+  return {"segments",
+          "2D: the random autopartition of random-segments from 10^2 to 10^6, 5 seeds; every heuristic and shape "
+          "at 10^3 and 10^4, 3 seeds",
+          {{{"random-segments"}, {"random"}, {100, 1000, 10000, 100000, 1000000}, {}, {1, 2, 3, 4, 5},
+            {Shape::Strict}, {2, 10000, 0}},
+           {{"random-segments"}, {}, {1000, 10000}, {}, {1, 2, 3}, {Shape::Strict, Shape::Coarse, Shape::Leafy},
+            {2, 10000, 0}}}};
+}
+
 }  // namespace
 
 const std::vector<Suite>& suites() {
   static const std::vector<Suite> all = {smoke(), quick(), default_suite(), merge_suite(), dynamic_suite(),
-                                         occlusion_suite(), full()};
+                                         occlusion_suite(), segments_suite(), full()};
   return all;
 }
 

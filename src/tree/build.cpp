@@ -9,6 +9,7 @@
 #include "common/rng.h"
 #include "tree/build_incremental.h"
 #include "tree/build_input.h"
+#include "tree/leaf_cell.h"
 
 namespace bsp {
 
@@ -48,10 +49,10 @@ class RecursiveBuilder {
   // which builds everything it is given. The division depends on the input and the options only,
   // never on the thread count, and a splitter's choice depends only on its node's context, so a
   // subtree comes out the same whether a task or the main builder makes it.
-  RecursiveBuilder(TreeDraft& tree, Splitter& splitter, std::vector<std::uint32_t> prefix,
+  RecursiveBuilder(TreeDraft& tree, Splitter& splitter, const BuildOptions& options, std::vector<std::uint32_t> prefix,
                    std::vector<std::unique_ptr<Task>>* tasks, std::size_t min_task = 0, std::size_t max_task = 0)
-      : tree_(tree), store_(tree.store), splitter_(splitter), prefix_(std::move(prefix)), tasks_(tasks),
-        min_task_(min_task), max_task_(max_task) {}
+      : tree_(tree), store_(tree.store), splitter_(splitter), options_(options), prefix_(std::move(prefix)),
+        tasks_(tasks), min_task_(min_task), max_task_(max_task) {}
 
   void run(WorkItem first) {
     if (first.ids.empty()) return;
@@ -72,6 +73,10 @@ class RecursiveBuilder {
 
  private:
   void process(WorkItem item, std::vector<WorkItem>& stack) {
+    if (tree_.shape == Shape::Leafy) {
+      process_leafy(std::move(item), stack);
+      return;
+    }
     if (tree_.shape == Shape::Coarse && is_convex_set(item.ids, store_, tree_.planes, tree_.tol.plane_eps)) {
       make_node(kNull, item.ids, item);
       return;
@@ -86,6 +91,50 @@ class RecursiveBuilder {
     }
     Partition part = partition(std::move(item.ids), plane);
     const std::uint32_t node = make_node(plane, part.coplanar, item);
+    push_children(node, std::move(part), item, stack);
+  }
+
+  // A leaf once the fragments bound one convex cell of one group. Otherwise the splitter's plane,
+  // unless it leaves every fragment on one side (coplanar ones go the way they face, so even a
+  // fragment's own plane can): then the plane of a fragment with another behind it, or, for a
+  // convex set of several groups, a free plane between two groups.
+  void process_leafy(WorkItem item, std::vector<WorkItem>& stack) {
+    const double eps = tree_.tol.plane_eps;
+    const auto witness = convexity_witness(item.ids, store_, tree_.planes, eps);
+    if (!witness && one_group(item.ids, store_, options_.leaf_groups)) {
+      make_node(kNull, item.ids, item);
+      return;
+    }
+    std::uint32_t plane = witness ? choose_plane(item).first : kNull;
+    if (plane == kNull || !parts_leafy(item.ids, store_, tree_.planes, tree_.planes[plane], eps)) {
+      ++tree_.stats.fallbacks;
+      plane = witness ? store_.plane(*witness) : group_plane(item.ids);
+    }
+    if (plane == kNull) {
+      ++tree_.stats.mixed_leaves;  // no separator survived snapping
+      make_node(kNull, item.ids, item);
+      return;
+    }
+    Partition part = partition(std::move(item.ids), plane);
+    const Vec3 n = tree_.planes[plane].n;
+    for (auto id : part.coplanar) (dot(tree_.planes[store_.plane(id)].n, n) > 0 ? part.front : part.back).push_back(id);
+    part.coplanar.clear();
+    const std::uint32_t node = make_node(plane, {}, item);
+    push_children(node, std::move(part), item, stack);
+  }
+
+  // The first of group_separators that still parts the set once snapped; kNull when none does.
+  std::uint32_t group_plane(const std::vector<std::uint32_t>& ids) {
+    for (const Plane& candidate : group_separators(ids, store_, options_.leaf_groups)) {
+      const Plane p = snap(candidate);
+      if (parts_leafy(ids, store_, tree_.planes, p, tree_.tol.plane_eps)) return tree_.planes.add(p);
+    }
+    return kNull;
+  }
+
+  Plane snap(const Plane& p) const { return options_.snap_free_plane ? options_.snap_free_plane(p) : p; }
+
+  void push_children(std::uint32_t node, Partition part, const WorkItem& item, std::vector<WorkItem>& stack) {
     if (!part.back.empty())
       stack.push_back({std::move(part.back), node, false, item.depth + 1, SplitContext::child_key(item.key, false)});
     if (!part.front.empty())
@@ -122,9 +171,12 @@ class RecursiveBuilder {
     task.root = {std::move(ids), kNull, true, item.depth, item.key};
     task.parent = item.parent;
     task.front_side = item.front_side;
+    // The task may outlive this builder (a temporary of the single region): it takes what it needs
+    // by value, and the options by a pointer into build_tree's caller, which outlives every task.
     Task* t = &task;
-#pragma omp task default(none) firstprivate(t)
-    RecursiveBuilder(t->tree, *t->splitter, std::move(t->prefix), nullptr).run(std::move(t->root));
+    const BuildOptions* options = &options_;
+#pragma omp task default(none) firstprivate(t, options)
+    RecursiveBuilder(t->tree, *t->splitter, *options, std::move(t->prefix), nullptr).run(std::move(t->root));
   }
 
   // Handed-off fragments leave space the main builder, which makes only the top of the tree, would
@@ -144,7 +196,7 @@ class RecursiveBuilder {
     const SplitChoice choice = splitter_.choose(ctx);
     switch (choice.kind) {
       case SplitChoice::Kind::Fragment: return {store_.plane(choice.fragment), true};
-      case SplitChoice::Kind::Free: return {tree_.planes.add(choice.plane), false};
+      case SplitChoice::Kind::Free: return {tree_.planes.add(snap(choice.plane)), false};
       case SplitChoice::Kind::None: break;
     }
     return {store_.plane(item.ids.front()), true};
@@ -250,6 +302,7 @@ class RecursiveBuilder {
   TreeDraft& tree_;
   FragmentStore& store_;
   Splitter& splitter_;
+  const BuildOptions& options_;
   std::vector<std::uint32_t> prefix_;
   std::vector<std::unique_ptr<Task>>* tasks_;
   std::size_t min_task_, max_task_;
@@ -349,6 +402,7 @@ class Assembler {
     to.dropped_slivers += from.dropped_slivers;
     to.dropped_area += from.dropped_area;
     to.fallbacks += from.fallbacks;
+    to.mixed_leaves += from.mixed_leaves;
     task = Task{};
   }
 
@@ -386,12 +440,12 @@ void build_recursive(TreeDraft& tree, Splitter& splitter, std::vector<std::uint3
   const std::size_t min_task = std::max<std::size_t>(options.min_task_fragments, 1);
   const std::size_t max_task = tree.stats.n_input / std::max<std::size_t>(options.task_share, 1);
   if (max_task < min_task) {  // no subtree can become a task: no thread team to start and idle
-    RecursiveBuilder(tree, splitter, {}, nullptr).run(WorkItem{std::move(ids)});
+    RecursiveBuilder(tree, splitter, options, {}, nullptr).run(WorkItem{std::move(ids)});
     return;
   }
-#pragma omp parallel default(none) shared(tree, splitter, ids, tasks, min_task, max_task)
+#pragma omp parallel default(none) shared(tree, splitter, options, ids, tasks, min_task, max_task)
 #pragma omp single
-  RecursiveBuilder(tree, splitter, {}, &tasks, min_task, max_task).run(WorkItem{std::move(ids)});
+  RecursiveBuilder(tree, splitter, options, {}, &tasks, min_task, max_task).run(WorkItem{std::move(ids)});
   tree.stats.tasks = tasks.size();
   if (!tasks.empty()) Assembler(tree, tasks).run();
 }
@@ -399,6 +453,8 @@ void build_recursive(TreeDraft& tree, Splitter& splitter, std::vector<std::uint3
 }  // namespace
 
 Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options) {
+  if (options.incremental && options.shape == Shape::Leafy)
+    throw std::invalid_argument("a leafy tree is built recursively, not incrementally");
   const auto start = std::chrono::steady_clock::now();
   TreeDraft draft;
   draft.shape = options.shape;
@@ -416,7 +472,9 @@ void build_subtree(TreeDraft& draft, Splitter& splitter, std::vector<std::uint32
                    std::vector<std::uint32_t> cell_prefix, std::uint32_t depth, std::uint64_t key) {
   if (!draft.nodes.empty() || ids.empty())
     throw std::logic_error("build_subtree needs an empty draft and at least one fragment");
-  RecursiveBuilder(draft, splitter, std::move(cell_prefix), nullptr).run(WorkItem{std::move(ids), kNull, true, depth, key});
+  static const BuildOptions kPlain;
+  RecursiveBuilder(draft, splitter, kPlain, std::move(cell_prefix), nullptr)
+      .run(WorkItem{std::move(ids), kNull, true, depth, key});
 }
 
 Tree build_incremental_tree(std::span<const Polygon> input, const BuildOptions& options) {

@@ -3,6 +3,7 @@
 // so a degenerate input that makes a chain as deep as the input is long cannot overflow the call
 // stack. The result is frozen: nodes in pre-order (front child first), fragments grouped by node.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -30,6 +31,14 @@ struct BuildOptions {
   // thread.
   std::size_t task_share = 64;
   std::size_t min_task_fragments = 512;
+  // Shape::Leafy only: the group of each input polygon (by source index), such as a Doom seg's
+  // sector; a leaf then holds fragments of one group. Empty: no groups.
+  std::vector<std::uint32_t> leaf_groups{};
+  // When set, every free plane (a splitter's Kind::Free choice, or the plane that parts a leafy
+  // convex set of several groups) passes through it before use: a format that can only store
+  // some planes (Doom's partition lines through integer points) gets the plane it will store, and
+  // the tree is built with exactly that plane.
+  std::function<Plane(const Plane&)> snap_free_plane{};
 };
 
 // Input polygons must be convex; polygons that are not planar within the tolerance are

@@ -1,6 +1,9 @@
 #include "tree/build_input.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "geometry/segment2.h"
 
 namespace bsp {
 
@@ -48,7 +51,27 @@ void keep_one(Polygon&& poly, double eps, Chunk& out) {
   out.parts.push_back({std::move(poly), *plane, s});
 }
 
+// A 2D segment (geometry/segment2.h): pooled with its line; shorter than eps, dropped. Its length
+// stands for area in the input and dropped totals.
+void load_segment(const Polygon& seg, std::uint32_t source, double eps, Chunk& out) {
+  const double len = std::hypot(seg.verts[1].p.x - seg.verts[0].p.x, seg.verts[1].p.y - seg.verts[0].p.y);
+  out.input_area += len;
+  const auto line = line_through(seg.verts[0].p, seg.verts[1].p);
+  if (!line || len < eps) {
+    ++out.dropped_input;
+    out.dropped_area += len;
+    return;
+  }
+  Polygon kept{seg.verts, source};
+  const BoundingSphere s = bounding_sphere(kept);
+  out.parts.push_back({std::move(kept), *line, s});
+}
+
 void load_one(const Polygon& poly, std::uint32_t source, double eps, Chunk& out) {
+  if (is_segment(poly)) {
+    load_segment(poly, source, eps, out);
+    return;
+  }
   out.input_area += poly.verts.size() >= 3 ? area(poly) : 0.0;
   const auto plane = supporting_plane(poly);
   if (!plane || poly.verts.size() == 3 || is_planar(poly, *plane, eps)) {

@@ -8,9 +8,16 @@
 //    [Fuchs1980]. Empty cells are not stored: a missing child is kNull.
 //  - Coarse: additionally, a leaf may hold several fragments once they form a convex set (each in
 //    front of or on every other's plane; IS-CONVEX-SET of [DividingPolygon]). Such a leaf has plane kNull.
+//  - Leafy: every fragment lives in a leaf (plane kNull) and every other node stores none; a fragment
+//    in a node's plane goes to the child on the side it faces (front when its plane's normal agrees).
+//    A leaf is the boundary of a convex cell: each fragment in front of every other's plane, or in it
+//    facing the same way; with leaf groups (BuildOptions), also of one group. This is the tree of
+//    Quake's and Doom's node builders, where a leaf (a subsector) is a convex piece of one sector.
 //
 // Depth convention: the root has depth 1, so a tree of n nodes has max depth >= ceil(log2(n+1)).
 #include <cstdint>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 #include "geometry/fragment_array.h"
@@ -22,7 +29,10 @@ namespace bsp {
 
 inline constexpr std::uint32_t kNull = 0xffffffffu;
 
-enum class Shape : std::uint8_t { Strict, Coarse };
+enum class Shape : std::uint8_t { Strict, Coarse, Leafy };
+// "strict", "coarse", "leafy": the names the CLI, the sweep and every JSON use.
+const char* shape_name(Shape s);
+std::optional<Shape> shape_named(std::string_view name);
 
 // 16 bytes. Nodes are stored in pre-order (front child first) and fragments in node order, so a
 // node's fragments run from its `first` to the next node's (Tree::fragments_of).
@@ -55,6 +65,7 @@ struct BuildStats {
   double input_area = 0.0;            // total area of the input polygons
   double dropped_area = 0.0;          // total area of everything dropped
   std::uint64_t fallbacks = 0;        // nodes where the splitter's plane separated nothing
+  std::uint64_t mixed_leaves = 0;     // leafy: convex leaves of several groups no free plane could part
   std::uint64_t tasks = 0;            // subtrees built as separate tasks (BuildOptions::task_share)
   double build_seconds = 0.0;
 };

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/errors.h"
+#include "geometry/segment2.h"
 #include "tree/traverse.h"
 
 namespace bsp {
@@ -286,6 +287,27 @@ ValidationReport validate_tree(const Tree& tree, const ValidationSettings& setti
   for (std::size_t v = 0; v < eyes.size(); ++v) {
     const auto order = visibility_order(tree, eyes[v], Order::BackToFront);
     const auto rays = validation_rays(fragments, tree.bounds, eyes[v], settings);
+    accumulate(r, check_order(scene, rays, order), static_cast<int>(v));
+  }
+  set_timing(r, start, cast_start);
+  return r;
+}
+
+ValidationReport validate_segment_tree(const Tree& tree, std::span<const Vec3> eyes, const ValidationSettings& settings) {
+  const auto start = Clock::now();
+  ValidationReport r;
+  const double height = std::max(tree.bounds.diagonal(), 1e-9);
+  const std::vector<Polygon> walls = extruded(tree.fragments.to_polygons(), height);
+  Box box = tree.bounds;
+  box.add(Vec3{box.lo.x, box.lo.y, height});
+  const EmbreeScene scene(walls, tree.tol.plane_eps);
+  r.fragments = tree.fragments.size();
+  r.plane_eps = scene.plane_eps();
+  const auto cast_start = Clock::now();
+  for (std::size_t v = 0; v < eyes.size(); ++v) {
+    const Vec3 eye{eyes[v].x, eyes[v].y, 0.5 * height};
+    const auto order = visibility_order(tree, eye, Order::BackToFront);
+    const auto rays = validation_rays(walls, box, eye, settings);
     accumulate(r, check_order(scene, rays, order), static_cast<int>(v));
   }
   set_timing(r, start, cast_start);

@@ -69,6 +69,12 @@ struct ValidationReport {
 // back-to-front traversal from that eye.
 ValidationReport validate_tree(const Tree& tree, const ValidationSettings& settings = {});
 
+// A 2D tree (segments, geometry/segment2.h) from eyes in its plane: each segment extruded to a wall
+// from z = 0 to the scene's diagonal (extruded()), each eye raised to half that height, and its
+// back-to-front order checked like a 3D one. The order of walls is the order of their segments,
+// since every partition plane of a 2D tree is vertical.
+ValidationReport validate_segment_tree(const Tree& tree, std::span<const Vec3> eyes, const ValidationSettings& settings = {});
+
 // One eye and an arbitrary order of arbitrary polygons (a depth sort, an order read from a file).
 // The ray set is validation_rays over the polygons' bounding box.
 ValidationReport validate_order(std::span<const Polygon> polys, const Vec3& eye,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "geometry/segment2.h"
 #include "split/fragment_store.h"
 
 namespace bsp {
@@ -59,7 +60,7 @@ class Checker {
     double total = 0;
     std::vector<double> per_source(input.size(), 0.0);
     for (const FragmentView frag : tree_.fragments) {
-      const double a = area(frag.polygon());
+      const double a = measure(frag.polygon());
       total += a;
       if (frag.source < per_source.size()) per_source[frag.source] += a;
       else fail("fragment source out of range");
@@ -69,7 +70,7 @@ class Checker {
       fail("area not conserved: fragments " + std::to_string(total) + " + dropped " +
            std::to_string(st.dropped_area) + " != input " + std::to_string(st.input_area));
     for (std::size_t i = 0; i < input.size(); ++i) {
-      const double a = area(input[i]);
+      const double a = measure(input[i]);
       if (per_source[i] > a * (1 + 1e-9) + 1e-300)
         fail("source " + std::to_string(i) + " has more fragment area than input area");
     }
@@ -89,12 +90,22 @@ class Checker {
       const Polygon frag = tree_.fragments[i].polygon();
       check_shape(i, frag);
       for (auto p : path)
-        if (!in_front_or_on(frag, tree_.planes[p], eps))
+        if (!in_front_or_on(frag, tree_.planes[p], eps) || faces_out_of(i, frag, p))
           fail("fragment " + std::to_string(i) + " at node " + std::to_string(index) + " on the wrong side of an ancestor plane");
-      if (!node.is_cell_leaf() && classify(frag, tree_.planes[node.plane], eps) != Side::Coplanar)
+      if (tree_.shape == Shape::Leafy && !node.is_cell_leaf())
+        fail("leafy node " + std::to_string(index) + " stores fragments");
+      else if (!node.is_cell_leaf() && classify(frag, tree_.planes[node.plane], eps) != Side::Coplanar)
         fail("fragment " + std::to_string(i) + " stored at node " + std::to_string(index) + " is not coplanar with it");
     }
     if (node.is_cell_leaf()) check_convex_leaf(index, r);
+  }
+
+  // Leafy trees send a fragment in a plane to the side it faces: lying in the oriented plane p of
+  // its cell, it must face the same way.
+  bool faces_out_of(std::uint32_t i, const Polygon& frag, std::uint32_t p) const {
+    const Plane plane = tree_.planes[p];
+    return tree_.shape == Shape::Leafy && classify(frag, plane, tree_.tol.plane_eps) == Side::Coplanar &&
+           dot(tree_.planes[tree_.fragment_plane[i]].n, plane.n) <= 0;
   }
 
   // 5: no degenerate fragment: no two consecutive vertices within plane_eps, not a sliver.
@@ -104,7 +115,7 @@ class Checker {
         fail("fragment " + std::to_string(i) + " repeats vertex " + std::to_string(k));
         break;
       }
-    if (is_sliver(frag, tree_.tol.plane_eps))
+    if (is_thin(frag, tree_.tol.plane_eps))
       fail("fragment " + std::to_string(i) + " is a sliver (narrower than plane_eps)");
   }
 
@@ -114,10 +125,18 @@ class Checker {
     for (std::uint32_t i = r.begin; i < r.end; ++i) leaf.push_back(tree_.fragments[i].polygon());
     for (std::uint32_t a = r.begin; a < r.end; ++a)
       for (std::uint32_t b = r.begin; b < r.end; ++b)
-        if (a != b && !in_front_or_on(leaf[b - r.begin], tree_.planes[tree_.fragment_plane[a]], eps)) {
-          fail("coarse leaf " + std::to_string(index) + " is not a convex set");
+        if (a != b && !bounds_cell_with(leaf[b - r.begin], b, tree_.planes[tree_.fragment_plane[a]], eps)) {
+          fail("leaf " + std::to_string(index) + " is not a convex set");
           return;
         }
+  }
+
+  // Whether fragment b may share a leaf with a fragment in plane pa: in front of it or on it; in a
+  // leafy tree, on it only facing the same way.
+  bool bounds_cell_with(const Polygon& b, std::uint32_t bi, const Plane& pa, double eps) const {
+    if (!in_front_or_on(b, pa, eps)) return false;
+    return tree_.shape != Shape::Leafy || classify(b, pa, eps) != Side::Coplanar ||
+           dot(tree_.planes[tree_.fragment_plane[bi]].n, pa.n) > 0;
   }
 
   const Tree& tree_;
