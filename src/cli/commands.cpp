@@ -23,6 +23,7 @@ const std::vector<Command>& commands() {
       classify_command(),
       animate_command(),
       occlude_command(),
+      doom_command(),
   };
   return all;
 }

@@ -43,5 +43,6 @@ Command merge_command();
 Command classify_command();
 Command animate_command();
 Command occlude_command();
+Command doom_command();
 
 }  // namespace bsp::cli

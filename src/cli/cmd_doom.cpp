@@ -1,0 +1,133 @@
+// bspbench doom: our heuristics and the installed node builders on the maps of a Doom WAD, side by
+// side (sweep/doom_run.h): splits, segs, subsectors, nodes, depth and CPU time per map and in
+// total, every output proved structurally and ours also against Embree. Exit code 1 when any of
+// our outputs fails a check.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "common/errors.h"
+#include "io/wad.h"
+#include "split/registry.h"
+#include "sweep/doom_run.h"
+#include "sweep/node_builders.h"
+
+namespace bsp::cli {
+
+namespace {
+
+using sweep::DoomBuilder;
+using sweep::DoomRun;
+using sweep::DoomRunSettings;
+using sweep::DoomTotals;
+
+std::vector<std::string> split_list(const std::string& text, char sep) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, sep);)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// NAME or NAME:k=v:k=v, each name a registered heuristic and each parameter one it has.
+DoomBuilder heuristic_builder(const std::string& spec) {
+  const auto parts = split_list(spec, ':');
+  if (parts.empty()) throw UsageError("--heuristics has an empty entry");
+  DoomBuilder b{DoomBuilder::Kind::Heuristic, find_heuristic(parts[0]).name, {}};
+  for (std::size_t i = 1; i < parts.size(); ++i) b.params.push_back(parse_assignment(parts[i]));
+  make_splitter(b.name, b.params, 1);  // rejects unknown parameters and values out of range now
+  return b;
+}
+
+std::vector<DoomBuilder> builders_from(const std::string& heuristics_text, const std::string& builders_text) {
+  std::vector<DoomBuilder> out;
+  if (heuristics_text == "all") {
+    for (const auto& h : heuristics()) out.push_back({DoomBuilder::Kind::Heuristic, h.name, {}});
+  } else {
+    for (const auto& spec : split_list(heuristics_text, ',')) out.push_back(heuristic_builder(spec));
+  }
+  for (const auto& name : split_list(builders_text, ',')) {
+    if (sweep::find_builder(name).path.empty()) throw UsageError("node builder " + name + " is not installed");
+    out.push_back({DoomBuilder::Kind::External, name, {}});
+  }
+  out.push_back({DoomBuilder::Kind::Shipped, "shipped", {}});
+  return out;
+}
+
+std::vector<std::string> maps_from(const Wad& wad, const std::string& text, const std::string& file) {
+  const std::vector<std::string> all = map_names(wad);
+  if (text == "all") return all;
+  std::vector<std::string> out = split_list(text, ',');
+  for (const auto& m : out)
+    if (std::find(all.begin(), all.end(), m) == all.end()) throw InputError(file + ": no map " + m);
+  return out;
+}
+
+void print_totals(const std::vector<DoomTotals>& totals) {
+  std::printf("%-28s %5s %9s %9s %9s %11s %9s %9s %9s %6s\n", "builder", "maps", "CPU s", "splits", "segs",
+              "subsectors", "nodes", "max depth", "leaf depth", "failed");
+  for (const DoomTotals& t : totals)
+    std::printf("%-28s %5zu %9.3f %9lld %9zu %11zu %9zu %9.1f %9.2f %6zu\n", t.builder.c_str(), t.maps, t.cpu_seconds,
+                static_cast<long long>(t.splits), t.segs, t.subsectors, t.nodes, t.mean_max_depth, t.mean_leaf_depth,
+                t.failed);
+}
+
+int run(Args& args) {
+  const std::string iwad = args.required("--iwad");
+  const std::string maps_text = args.option("--maps").value_or("all");
+  const std::string heuristics_text = args.required("--heuristics");
+  const std::string builders_text = args.option("--builders").value_or("");
+  DoomRunSettings settings;
+  settings.out_dir = args.option("--out").value_or("");
+  settings.seed = static_cast<std::uint64_t>(args.integer("--seed", 0, (1LL << 62)).value_or(1));
+  settings.views = static_cast<int>(args.integer("--views", 1, 100).value_or(settings.views));
+  const bool json = args.flag("--json");
+  args.finish();
+  const std::vector<DoomBuilder> builders = builders_from(heuristics_text, builders_text);
+  const Wad wad = read_wad(iwad);
+  const std::vector<std::string> maps = maps_from(wad, maps_text, iwad);
+  std::vector<DoomRun> runs;
+  for (const auto& name : maps) {
+    const DoomMap map = read_map(wad, name, iwad);
+    for (const DoomBuilder& b : builders) runs.push_back(sweep::run_doom(iwad, wad, map, b, settings));
+  }
+  const std::vector<DoomTotals> totals = sweep::doom_totals(runs);
+  bool ours_ok = true;
+  for (const DoomRun& r : runs) ours_ok &= r.kind != DoomBuilder::Kind::Heuristic || r.ok;
+  if (json) {
+    nlohmann::json out = {{"iwad", iwad}, {"maps", maps}, {"seed", settings.seed}, {"builders", nlohmann::json::object()},
+                          {"runs", nlohmann::json::array()}, {"totals", nlohmann::json::array()}};
+    for (const DoomBuilder& b : builders)
+      if (b.kind == DoomBuilder::Kind::External) out["builders"][b.name] = sweep::find_builder(b.name).version;
+    for (const DoomRun& r : runs) out["runs"].push_back(sweep::to_json(r));
+    for (const DoomTotals& t : totals) out["totals"].push_back(sweep::to_json(t));
+    std::cout << out.dump() << "\n";
+  } else {
+    print_totals(totals);
+  }
+  return ours_ok ? 0 : 1;
+}
+
+}  // namespace
+
+Command doom_command() {
+  return {"doom",
+          "--iwad FILE [--maps all|MAP,...] --heuristics all|NAME[:k=v...][,...] [--builders zdbsp,glbsp] [--out DIR] "
+          "[--seed S] [--views K] [--json]",
+          "build the maps of a Doom WAD with our heuristics and with installed node builders, and compare",
+          run,
+          {{"--iwad FILE", "the WAD whose maps are built (an IWAD or a PWAD)"},
+           {"--maps all|MAP,...", "the maps to build (default all)"},
+           {"--heuristics all|NAME[:k=v...][,...]", "our heuristics, each with optional parameters"},
+           {"--builders zdbsp,glbsp", "external node builders to run on the same maps, each map in its own PWAD"},
+           {"--out DIR", "write each map rebuilt by each heuristic as DIR/HEURISTIC/MAP.wad"},
+           {"--seed S", "seed of the heuristics' randomness (default 1)"},
+           {"--views K", "eyes (the map's first things) of the Embree order check of our trees (default 4)"},
+           {"--json", "print one JSON object (every run and the totals) instead of the totals table"}}};
+}
+
+}  // namespace bsp::cli
