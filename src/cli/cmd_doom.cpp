@@ -33,11 +33,13 @@ std::vector<std::string> split_list(const std::string& text, char sep) {
   return out;
 }
 
-// NAME or NAME:k=v:k=v, each name a registered heuristic and each parameter one it has.
+// A Doom preset, or NAME or NAME:k=v:k=v, each name a registered heuristic and each parameter one
+// it has.
 DoomBuilder heuristic_builder(const std::string& spec) {
+  if (const auto preset = sweep::doom_preset(spec)) return *preset;
   const auto parts = split_list(spec, ':');
   if (parts.empty()) throw UsageError("--heuristics has an empty entry");
-  DoomBuilder b{DoomBuilder::Kind::Heuristic, find_heuristic(parts[0]).name, {}};
+  DoomBuilder b{DoomBuilder::Kind::Heuristic, find_heuristic(parts[0]).name, {}, {}};
   for (std::size_t i = 1; i < parts.size(); ++i) b.params.push_back(parse_assignment(parts[i]));
   make_splitter(b.name, b.params, 1);  // rejects unknown parameters and values out of range now
   return b;
@@ -46,15 +48,16 @@ DoomBuilder heuristic_builder(const std::string& spec) {
 std::vector<DoomBuilder> builders_from(const std::string& heuristics_text, const std::string& builders_text) {
   std::vector<DoomBuilder> out;
   if (heuristics_text == "all") {
-    for (const auto& h : heuristics()) out.push_back({DoomBuilder::Kind::Heuristic, h.name, {}});
+    for (const auto& h : heuristics()) out.push_back({DoomBuilder::Kind::Heuristic, h.name, {}, {}});
+    for (const auto& p : sweep::doom_presets()) out.push_back(*sweep::doom_preset(p.name));
   } else {
     for (const auto& spec : split_list(heuristics_text, ',')) out.push_back(heuristic_builder(spec));
   }
   for (const auto& name : split_list(builders_text, ',')) {
     if (sweep::find_builder(name).path.empty()) throw UsageError("node builder " + name + " is not installed");
-    out.push_back({DoomBuilder::Kind::External, name, {}});
+    out.push_back({DoomBuilder::Kind::External, name, {}, {}});
   }
-  out.push_back({DoomBuilder::Kind::Shipped, "shipped", {}});
+  out.push_back({DoomBuilder::Kind::Shipped, "shipped", {}, {}});
   return out;
 }
 
@@ -122,7 +125,9 @@ Command doom_command() {
           run,
           {{"--iwad FILE", "the WAD whose maps are built (an IWAD or a PWAD)"},
            {"--maps all|MAP,...", "the maps to build (default all)"},
-           {"--heuristics all|NAME[:k=v...][,...]", "our heuristics, each with optional parameters"},
+           {"--heuristics all|NAME[:k=v...][,...]",
+            "our heuristics, each with optional parameters, or the presets doom-splits (min-relation, 64 candidates, "
+            "min_relation 0.05) and doom-depth (min_relation 0.3); all: every heuristic and both presets"},
            {"--builders zdbsp,glbsp", "external node builders to run on the same maps, each map in its own PWAD"},
            {"--out DIR", "write each map rebuilt by each heuristic as DIR/HEURISTIC/MAP.wad"},
            {"--seed S", "seed of the heuristics' randomness (default 1)"},

@@ -220,6 +220,11 @@ class VanillaWriter {
 
 DoomSegs doom_segs(const DoomMap& map) {
   DoomSegs out;
+  std::unordered_map<std::uint64_t, std::uint32_t> sector_along;  // by the side's two vertex keys
+  const auto side_key = [](const Vec3& a, const Vec3& b) {
+    return key(static_cast<std::int64_t>(a.x), static_cast<std::int64_t>(a.y)) * 0x9E3779B97F4A7C15ULL ^
+           key(static_cast<std::int64_t>(b.x), static_cast<std::int64_t>(b.y));
+  };
   for (std::size_t l = 0; l < map.linedefs.size(); ++l) {
     const Linedef& line = map.linedefs[l];
     if (line.v1 == line.v2 || (map.vertices[line.v1].x == map.vertices[line.v2].x &&
@@ -230,9 +235,15 @@ DoomSegs doom_segs(const DoomMap& map) {
     for (std::uint8_t side = 0; side < 2; ++side) {
       if (line.sidenum[side] == kNoSidedef) continue;
       const auto [a, b] = side_ends(map, static_cast<std::uint16_t>(l), side);
+      const std::uint32_t sector = map.sidedefs[line.sidenum[side]].sector;
+      const auto [earlier, fresh] = sector_along.try_emplace(side_key(a, b), sector);
+      if (!fresh && earlier->second != sector) {
+        ++out.coincident_sides;
+        continue;
+      }
       const auto index = static_cast<std::uint32_t>(out.segs.size());
       out.segs.push_back(Polygon{{Vertex{a}, Vertex{b}}, index});
-      out.sector.push_back(map.sidedefs[line.sidenum[side]].sector);
+      out.sector.push_back(sector);
       out.linedef.push_back(static_cast<std::uint16_t>(l));
       out.side.push_back(side);
     }

@@ -2,7 +2,7 @@
 // Doom maps as 2D scenes, and leafy trees as vanilla nodes (the Unofficial Doom Specs, Matt Fell,
 // 1994; formats in io/doom_map.h).
 //
-// Map to scene: every linedef side is one segment (geometry/segment2.h), v1 → v2 for the right
+// Map to scene: every linedef side is one segment (but a side coinciding with another, DoomSegs) (geometry/segment2.h), v1 → v2 for the right
 // side and v2 → v1 for the left, so a segment's front (its right) faces the sector of its side, the
 // segment's leaf group (tree/build.h): a leafy tree's leaves are then Doom's subsectors, convex and
 // of one sector.
@@ -32,6 +32,10 @@ struct DoomSegs {
   std::vector<std::uint16_t> linedef;  // per seg
   std::vector<std::uint8_t> side;      // per seg: 0 right, 1 left
   std::uint64_t zero_length = 0;       // linedefs whose vertices coincide: no segment
+  // Sides that run exactly along an earlier side, the same way, facing another sector (overlapping
+  // linedefs, a map error): no plane parts the two, so no subsector could hold them with one sector.
+  // The later one is left out.
+  std::uint64_t coincident_sides = 0;
 };
 
 DoomSegs doom_segs(const DoomMap& map);

@@ -59,6 +59,7 @@ void run_ours(const Wad& wad, const DoomMap& map, const DoomBuilder& b, const Do
   const DoomSegs segs = doom_segs(map);
   r.segments = segs.segs.size();
   r.dropped = segs.zero_length;
+  r.coincident = segs.coincident_sides;
   const Box box = bounds_of(segs);
   IntegerLines lines(box.center());
   BuildOptions options;
@@ -131,10 +132,27 @@ void run_external(const Wad& wad, const DoomMap& map, const DoomBuilder& b, cons
 }  // namespace
 
 std::string DoomBuilder::label() const {
+  if (!preset.empty()) return preset;
   if (params.empty()) return name;
   std::string s = name + "{";
   for (std::size_t i = 0; i < params.size(); ++i) s += (i ? "," : "") + params[i].first + "=" + params[i].second;
   return s + "}";
+}
+
+const std::vector<DoomPreset>& doom_presets() {
+  static const std::vector<DoomPreset> all = {
+      {"doom-splits", "min-relation", {{"candidates", "64"}, {"min_relation", "0.05"}},
+       "fewest splits in no more CPU time than ZDBSP"},
+      {"doom-depth", "min-relation", {{"candidates", "64"}, {"min_relation", "0.3"}},
+       "ZDBSP's depth or less with fewer splits than ZDBSP"},
+  };
+  return all;
+}
+
+std::optional<DoomBuilder> doom_preset(const std::string& name) {
+  for (const DoomPreset& p : doom_presets())
+    if (p.name == name) return DoomBuilder{DoomBuilder::Kind::Heuristic, p.heuristic, p.params, p.name};
+  return std::nullopt;
 }
 
 std::vector<Vec3> doom_eyes(const Wad& wad, const DoomMap& map, int views) {
@@ -184,6 +202,7 @@ nlohmann::json to_json(const DoomRun& r) {
   if (r.kind == DoomBuilder::Kind::Heuristic) {
     j["segments"] = r.segments;
     j["zero_length_linedefs"] = r.dropped;
+    j["coincident_sides"] = r.coincident;
     j["fallbacks"] = r.fallbacks;
     j["mixed_leaves"] = r.mixed_leaves;
     j["rounding"] = {{"split_vertices", r.rounding.split_vertices},

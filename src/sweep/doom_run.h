@@ -31,8 +31,21 @@ struct DoomBuilder {
   Kind kind = Kind::Heuristic;
   std::string name;          // heuristic name, external tool, or "shipped"
   ParamAssignments params;   // heuristics only
-  std::string label() const;  // name, with "k=v,..." in braces when params are set
+  std::string preset;        // the DoomPreset it came from, if any
+  std::string label() const;  // the preset, or name with "k=v,..." in braces when params are set
 };
+
+// Heuristic settings tuned on the 68 Freedoom maps against the node builders (README, "Doom maps"):
+// min-relation over 64 sampled candidates, its balance threshold set low for few splits or higher
+// for shallow trees.
+struct DoomPreset {
+  std::string name, heuristic;
+  ParamAssignments params;
+  std::string aim;  // one line: what it was tuned for
+};
+const std::vector<DoomPreset>& doom_presets();
+// A preset by name, as a builder; nullopt for another name.
+std::optional<DoomBuilder> doom_preset(const std::string& name);
 
 struct DoomRunSettings {
   std::uint64_t seed = 1;
@@ -50,7 +63,8 @@ struct DoomRun {
   double cpu_seconds = 0;
   DoomCheckReport check;
   // Ours only.
-  std::uint64_t segments = 0, fallbacks = 0, mixed_leaves = 0, dropped = 0;
+  std::uint64_t segments = 0, fallbacks = 0, mixed_leaves = 0;
+  std::uint64_t dropped = 0, coincident = 0;  // zero-length linedefs, coincident sides (DoomSegs)
   RoundingStats rounding;
   std::optional<ValidationReport> order;
 };

@@ -111,7 +111,7 @@ class RecursiveBuilder {
       plane = witness ? store_.plane(*witness) : group_plane(item.ids);
     }
     if (plane == kNull) {
-      ++tree_.stats.mixed_leaves;  // no separator survived snapping
+      ++tree_.stats.mixed_leaves;  // coincident fragments of two groups, or no separator survived snapping
       make_node(kNull, item.ids, item);
       return;
     }
@@ -125,7 +125,7 @@ class RecursiveBuilder {
 
   // The first of group_separators that still parts the set once snapped; kNull when none does.
   std::uint32_t group_plane(const std::vector<std::uint32_t>& ids) {
-    for (const Plane& candidate : group_separators(ids, store_, options_.leaf_groups)) {
+    for (const Plane& candidate : group_separators(ids, store_, options_.leaf_groups, tree_.tol.plane_eps)) {
       const Plane p = snap(candidate);
       if (parts_leafy(ids, store_, tree_.planes, p, tree_.tol.plane_eps)) return tree_.planes.add(p);
     }

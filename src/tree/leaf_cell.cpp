@@ -43,22 +43,22 @@ bool one_group(std::span<const std::uint32_t> ids, const FragmentStore& frags, s
 }
 
 std::vector<Plane> group_separators(std::span<const std::uint32_t> ids, const FragmentStore& frags,
-                                    std::span<const std::uint32_t> groups) {
-  const std::uint32_t first = ids.front();
-  std::uint32_t other = first;
-  for (auto id : ids)
-    if (group_of(frags, groups, id) != group_of(frags, groups, first)) {
-      other = id;
-      break;
+                                    std::span<const std::uint32_t> groups, double eps) {
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    for (std::size_t j = i + 1; j < ids.size(); ++j) {
+      const std::uint32_t a = ids[i], b = ids[j];
+      if (group_of(frags, groups, a) == group_of(frags, groups, b)) continue;
+      const Vec3 ca = vertex_average(frags.points(a)), cb = vertex_average(frags.points(b));
+      if (length(ca - cb) <= eps) continue;  // the same place: no plane parts them
+      std::vector<Plane> out{Plane::through(ca - cb, (ca + cb) / 2.0)};
+      if (frags.points(a).size() != 2 || frags.points(b).size() != 2) return out;
+      for (std::uint32_t id : {a, b})
+        for (const Vec3& p : frags.points(id))
+          for (const auto& [dx, dy] : kSeparatorDirections)
+            if (const auto line = line_through(p, p + Vec3{dx, dy, 0})) out.push_back(*line);
+      return out;
     }
-  const Vec3 a = vertex_average(frags.points(first)), b = vertex_average(frags.points(other));
-  std::vector<Plane> out{Plane::through(a - b, (a + b) / 2.0)};
-  if (frags.points(first).size() != 2 || frags.points(other).size() != 2) return out;
-  for (std::uint32_t id : {first, other})
-    for (const Vec3& p : frags.points(id))
-      for (const auto& [dx, dy] : kSeparatorDirections)
-        if (const auto line = line_through(p, p + Vec3{dx, dy, 0})) out.push_back(*line);
-  return out;
+  return {};
 }
 
 bool parts_leafy(std::span<const std::uint32_t> ids, const FragmentStore& frags, const PlanePool& planes,

@@ -30,14 +30,15 @@ std::optional<std::uint32_t> convexity_witness(std::span<const std::uint32_t> id
 // Whether all fragments come from sources of one group (`groups` by source; empty means one group).
 bool one_group(std::span<const std::uint32_t> ids, const FragmentStore& frags, std::span<const std::uint32_t> groups);
 
-// Planes that may part the first fragment from the first of another group, best first: the
-// perpendicular bisector of their vertex averages (which parts them unless the centres coincide);
-// then, for segments, the lines through each of their endpoints in the directions of
+// Planes that may part two fragments of different groups, best first, for the first such pair (in
+// ids order) whose vertex averages lie more than eps apart: the perpendicular bisector of the
+// averages; then, for segments, the lines through each of their endpoints in the directions of
 // kSeparatorDirections, which part two pieces meeting at a corner and, through integer endpoints,
 // are lines a format with integer partitions stores exactly (where the bisector, snapped to the
-// grid, can miss pieces shorter than a grid unit).
+// grid, can miss pieces shorter than a grid unit). Empty when every such pair is in one place
+// (coincident fragments of two groups, which no plane parts).
 std::vector<Plane> group_separators(std::span<const std::uint32_t> ids, const FragmentStore& frags,
-                                    std::span<const std::uint32_t> groups);
+                                    std::span<const std::uint32_t> groups, double eps);
 
 // Whether splitting `ids` by `plane` by the leafy rule (coplanar fragments to the side they face)
 // leaves fragments on both sides.

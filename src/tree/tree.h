@@ -65,7 +65,7 @@ struct BuildStats {
   double input_area = 0.0;            // total area of the input polygons
   double dropped_area = 0.0;          // total area of everything dropped
   std::uint64_t fallbacks = 0;        // nodes where the splitter's plane separated nothing
-  std::uint64_t mixed_leaves = 0;     // leafy: convex leaves of several groups no free plane could part
+  std::uint64_t mixed_leaves = 0;     // leafy: convex leaves of several groups no plane could part
   std::uint64_t tasks = 0;            // subtrees built as separate tasks (BuildOptions::task_share)
   double build_seconds = 0.0;
 };
