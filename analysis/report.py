@@ -25,14 +25,26 @@ by rebuild's at the same objects and speed, against the moving fraction, one pan
 Occlude runs get a section on occlusion culling: per scene, what culling emits against what Embree
 sees and against frustum culling alone, and its cost, per heuristic and size (occlusion-SCENE.png).
 
+2D drawing runs of random-segments get a section on the random autopartition against Paterson and
+Yao's bound n + 2n ln n: median fragments over seeds (least to greatest) against the bound on
+log-log axes and their ratio (segments-bound.png), a table of the ratio per n, and every heuristic
+and shape at the other sizes. Doom runs get a section setting our heuristics beside the external
+node builders and the shipped nodes: totals per builder over all maps, the two presets' targets
+judged, splits against depth and against CPU time (doom.png), splits and depth per map, and the
+structural check's findings per builder.
+
+Each section names the commands that reproduce it: the sweep of the report's suite, then this page.
+
 Needs matplotlib (Debian: python3-matplotlib; call /usr/bin/python3, a pyenv python3 may lack it).
 Exit status: 0 written, 2 bad input (unreadable file, not a bspbench report, other version).
 """
 import argparse
 import html
 import json
+import math
 import os
 import re
+import statistics
 import sys
 
 import matplotlib
@@ -41,7 +53,8 @@ matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 
 SCHEMA = "bspbench-report"
-VERSION = 4
+# Version 5 only added doom runs, so a version 4 report reads as one without them.
+VERSIONS = (4, 5)
 # The three axes of the Pareto view, all "lower is better": fragments vs depth vs E_line.
 PARETO_AXES = ("fragments", "max_depth", "e_line")
 SCALING_AXES = (("timings", "build_cpu_seconds", "build CPU time (s)"), ("metrics", "fragments", "fragments"))
@@ -61,8 +74,9 @@ def load(path):
         fail(f"{path}: cannot read a JSON report ({e})")
     if not isinstance(report, dict) or report.get("schema") != SCHEMA:
         fail(f"{path}: not a bspbench report")
-    if report.get("version") != VERSION:
-        fail(f"{path}: report version {report.get('version')}, this script reads version {VERSION}")
+    if report.get("version") not in VERSIONS:
+        fail(f"{path}: report version {report.get('version')}, this script reads versions "
+             + " and ".join(map(str, VERSIONS)))
     return report
 
 
@@ -126,7 +140,8 @@ def plot_pareto(scene, aggs, path):
     xs = [v[0] for _, v in rows]
     ys = [v[1] for _, v in rows]
     colour = [v[2] for _, v in rows] if len(axes) == 3 else None
-    points = ax.scatter(xs, ys, c=colour, cmap="viridis", s=60, zorder=2)
+    # 2D scenes have no E_line: plain points then (a colour map without colours only warns).
+    points = ax.scatter(xs, ys, c=colour, cmap="viridis" if colour is not None else None, s=60, zorder=2)
     if colour is not None:
         fig.colorbar(points, ax=ax, label=axes[2] + " (mean)")
     for (name, v), x, y in zip(rows, xs, ys):
@@ -237,11 +252,11 @@ STYLE = ("<style>body{font-family:sans-serif;margin:1em 2em}table{border-collaps
          ".scroll{overflow-x:auto}img{max-width:100%}</style>")
 
 
-def scene_section(scene, aggs, out_dir):
+def scene_section(scene, aggs, out_dir, how):
     pareto_png, scaling_png = f"pareto-{slug(scene)}.png", f"scaling-{slug(scene)}.png"
     axes, _, front = plot_pareto(scene, aggs, os.path.join(out_dir, pareto_png))
     plot_scaling(scene, aggs, os.path.join(out_dir, scaling_png))
-    return (f"<h2 id='{slug(scene)}'>{html.escape(scene)}</h2>"
+    return (f"<h2 id='{slug(scene)}'>{html.escape(scene)}</h2>{how}"
             f"<p>Not beaten on all of {', '.join(axes)}: <b>{html.escape(', '.join(sorted(front)))}</b></p>"
             f"<img src='{pareto_png}' alt='Pareto view for {html.escape(scene)}'>"
             f"<img src='{scaling_png}' alt='log-log scaling for {html.escape(scene)}'>"
@@ -379,7 +394,7 @@ def merge_table(ops):
             "<th>proof violations</th>" + head + "</tr>" + "".join(rows) + "</table></div>")
 
 
-def merge_section(report, out_dir):
+def merge_section(report, out_dir, how):
     pairs = by_pair(report)
     if not pairs:
         return "", ""
@@ -390,7 +405,8 @@ def merge_section(report, out_dir):
              "fastest at the largest size, whether the 95% intervals over seeds separate it from the runner-up, "
              "where Naylor's expected-cost trees rank, which result is smallest after reduction, and which "
              "heuristic is fastest once both operands' builds are counted, as a multiple of CGAL's corefinement "
-             "of the same operands (its wall time in the same run). Column headers explain themselves on hover.</p>"]
+             "of the same operands (its wall time in the same run). Column headers explain themselves on hover.</p>"
+             + how]
     for pair, ops in pairs.items():
         time_png, sizes_png = f"merge-{slug(pair)}.png", f"sizes-{slug(pair)}.png"
         plot_merge_time(pair, ops, os.path.join(out_dir, time_png))
@@ -509,7 +525,7 @@ def drift_table(runs):
             "<th>order violations</th>" + head + "</tr>" + "".join(rows) + "</table></div>")
 
 
-def dynamic_section(report, out_dir):
+def dynamic_section(report, out_dir, how):
     cases = dynamic_cases(report)
     if not cases:
         return "", ""
@@ -521,7 +537,7 @@ def dynamic_section(report, out_dir):
              "Checked frames pass the tree invariants and the Embree order check. The plots give each strategy's "
              "median update time over rebuild's at the same objects and speed (below the dashed line it wins); "
              "the table says where each stops winning. Drift compares the last drift frame's tree with a fresh "
-             "build of the same frame.</p>"]
+             "build of the same frame.</p>" + how]
     for (scene, n), runs in cases.items():
         png = f"dynamic-{slug(scene)}-{n}.png"
         plot_dynamic(scene, n, runs, os.path.join(out_dir, png))
@@ -545,7 +561,7 @@ OCCLUSION_COLUMNS = (("metrics", "emitted", "fragments emitted, all views"),
                      ("timings", "occlude_cpu_seconds", "culling one view, thread CPU seconds"))
 
 
-def occlusion_section(report, out_dir):
+def occlusion_section(report, out_dir, how):
     scenes = {}
     for agg in report["aggregates"]:
         if kind(agg) == "occlude":
@@ -558,7 +574,7 @@ def occlusion_section(report, out_dir):
              "skipped [Naylor1992]. Every view is proved conservative by Embree primary rays (proof violations "
              "count rays whose first hit was culled). Emitted / seen says how tight the output is (seen: the "
              "fragments rays meet first, a lower bound of the visible set); emitted / frustum-culled what occlusion "
-             "adds to frustum culling.</p>"]
+             "adds to frustum culling.</p>" + how]
     for scene, aggs in sorted(scenes.items()):
         png = f"occlusion-{slug(scene)}.png"
         fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -592,6 +608,427 @@ def occlusion_section(report, out_dir):
     return "<li><a href='#occlusion'>occlusion culling</a></li>", "".join(parts)
 
 
+def reproduce(report, source, out_dir):
+    """The commands that remake a section's tables and plots: the sweep (as shards merged, when it
+    ran so) and this page."""
+    suite, shards = report["suite"]["name"], len(report["shards"])
+    if shards > 1:
+        sweep = (f"bspbench sweep --suite {suite} --shard I/{shards} --out shard-I.json (I = 0 to {shards - 1}); "
+                 f"bspbench merge-reports --out {source} shard-*.json")
+    else:
+        sweep = f"bspbench sweep --suite {suite} --out {source}"
+    return (f"<p class=cmd>Reproduce: <code>{html.escape(sweep)}</code>, then "
+            f"<code>{html.escape(f'bspbench report --in {source} --out {out_dir}')}</code></p>")
+
+
+# The setting of Paterson and Yao's bound: n pairwise disjoint segments (generators/random_segments.cpp).
+SEGMENT_SCENE = "random-segments"
+
+
+def autopartition_bound(n):
+    """Expected fragments of a random autopartition of n disjoint segments is at most n + 2n ln n
+    [PatersonYao1990; deBerg2008 §12.2]."""
+    return n + 2 * n * math.log(n)
+
+
+def segment_groups(report):
+    """(heuristic label, shape) -> polygon count -> the runs of the segment scene at that size."""
+    groups = {}
+    for r in report["runs"]:
+        rid = r["id"]
+        if rid.get("kind") == "draw" and rid["scene"] == SEGMENT_SCENE:
+            groups.setdefault((rid["heuristic"], rid["shape"]), {}).setdefault(rid["n_polygons"], []).append(r)
+    return groups
+
+
+def spread(runs, metric):
+    """Median, least and greatest over seeds: with a handful of seeds the extremes are the honest interval."""
+    values = [r["metrics"][metric] for r in runs]
+    return statistics.median(values), min(values), max(values)
+
+
+def violations(runs):
+    """Structural and order-check violations over the runs (runs with no order check count none)."""
+    return sum(r["invariants"]["violations"] + (r.get("validation") or {}).get("violations", 0) for r in runs)
+
+
+def failing_runs(groups):
+    """A line per run with a violation, with its command and first problem, or that none has one."""
+    runs = [r for sizes in groups.values() for rs in sizes.values() for r in rs if violations([r])]
+    if not runs:
+        return "<p>No run has an invariant or order-check violation.</p>"
+    def problem(r):
+        found = r["invariants"]["first_problems"] or (r.get("validation") or {}).get("first_problems") or [""]
+        return found[0]
+    items = "".join(f"<li><code>{html.escape(r['id']['command'])}</code>: {violations([r])} "
+                    f"({html.escape(problem(r))})</li>" for r in sorted(runs, key=lambda r: r["id"]["command"]))
+    return f"<p><b>Runs with an invariant or order-check violation: {len(runs)}</b></p><ul>{items}</ul>"
+
+
+def plot_bound(sizes, path):
+    ns = sorted(sizes)
+    med, lo, hi = zip(*(spread(sizes[n], "fragments") for n in ns))
+    bounds = [autopartition_bound(n) for n in ns]
+    curve = [ns[0] * (ns[-1] / ns[0]) ** (i / 60) for i in range(61)]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    left.errorbar(ns, med, yerr=[[m - x for m, x in zip(med, lo)], [x - m for m, x in zip(med, hi)]], marker="o",
+                  capsize=3, label="random autopartition: median fragments (min–max over seeds)")
+    left.plot(curve, [autopartition_bound(n) for n in curve], "--", color="red", label="bound n + 2n ln n")
+    left.plot(curve, curve, ":", color="grey", label="n (no split at all)")
+    left.set_xscale("log")
+    left.set_yscale("log")
+    left.set_ylabel("fragments")
+    left.legend(fontsize=7)
+    below = [(m - x) / b for m, x, b in zip(med, lo, bounds)]
+    above = [(x - m) / b for m, x, b in zip(med, hi, bounds)]
+    right.errorbar(ns, [m / b for m, b in zip(med, bounds)], yerr=[below, above], marker="o", capsize=3)
+    right.axhline(1.0, color="red", linewidth=1, linestyle="--")
+    right.set_xscale("log")
+    right.set_ylim(0, max(1.1, max(hi[i] / bounds[i] for i in range(len(ns))) * 1.1))
+    right.set_ylabel("fragments / (n + 2n ln n)")
+    for ax, title in ((left, "fragments against n, log-log"), (right, "measured over the bound (1: at the bound)")):
+        ax.set_xlabel("segments (n)")
+        ax.set_title(f"{SEGMENT_SCENE}, random, strict: {title}", fontsize=9)
+        ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def bound_table(sizes):
+    """The ratio table and one sentence: does every size stay under the bound, and how close it comes."""
+    rows, ratios = [], []
+    for n in sorted(sizes):
+        med, lo, hi = spread(sizes[n], "fragments")
+        bound = autopartition_bound(n)
+        ratios.append((med / bound, hi / bound, n))
+        rows.append(f"<tr><td>{n:,}</td><td>{len(sizes[n])}</td><td>{med:,.0f}</td><td>{lo:,}</td><td>{hi:,}</td>"
+                    f"<td>{bound:,.0f}</td><td>{med / bound:.3f}</td><td>{hi / bound:.3f}</td>"
+                    f"<td>{violations(sizes[n])}</td></tr>")
+    worst_median, worst_run = max(ratios), max(ratios, key=lambda r: r[1])
+    under = all(hi < 1 for _, hi, _ in ratios)
+    verdict = (f"Every size stays under the bound, every seed included: the largest ratio of the median to the "
+               f"bound is {worst_median[0]:.3f} (n = {worst_median[2]:,}), of a single run {worst_run[1]:.3f} "
+               f"(n = {worst_run[2]:,})." if under else
+               "Not every size stays under the bound: over it at n = "
+               + ", ".join(f"{n:,} (median ratio {m:.3f}, largest run {h:.3f})" for m, h, n in ratios if h >= 1)
+               + f"; the largest ratio of the median to the bound is {worst_median[0]:.3f} (n = {worst_median[2]:,}).")
+    return (f"<p><b>{html.escape(verdict)}</b></p>"
+            "<table><tr><th>n</th><th>seeds</th><th>median fragments</th><th>least</th><th>greatest</th>"
+            "<th>bound n + 2n ln n</th><th>median / bound</th><th>greatest / bound</th>"
+            "<th>invariant + order violations</th></tr>" + "".join(rows) + "</table>")
+
+
+def heuristics_table(groups, sizes):
+    """Every heuristic and shape at the given sizes: median fragments (and over the bound) and depths."""
+    def medians(runs):
+        if not runs:
+            return "<td></td>" * 4
+        frags = statistics.median(r["metrics"]["fragments"] for r in runs)
+        return (f"<td>{frags:,.0f}</td><td>{frags / autopartition_bound(runs[0]['id']['n_polygons']):.3f}</td>"
+                f"<td>{statistics.median(r['metrics']['max_depth'] for r in runs):g}</td>"
+                f"<td>{statistics.median(r['metrics']['mean_depth'] for r in runs):.2f}</td>")
+    largest = sizes[-1]
+    ranked = sorted((g for g in groups.items() if largest in g[1]),
+                    key=lambda g: statistics.median(r["metrics"]["fragments"] for r in g[1][largest]))
+    head = "".join(f"<th colspan=4>n = {n:,}</th>" for n in sizes)
+    sub = "<th>fragments</th><th>/ bound</th><th>max depth</th><th>mean depth</th>" * len(sizes)
+    def row(heuristic, shape, runs):
+        at = [runs.get(n, []) for n in sizes]
+        return (f"<tr><td>{html.escape(heuristic)}</td><td>{html.escape(shape)}</td><td>{sum(map(len, at))}</td>"
+                f"<td>{sum(map(violations, at))}</td>" + "".join(map(medians, at)) + "</tr>")
+    rows = "".join(row(h, shape, runs) for (h, shape), runs in ranked)
+    return ("<div class=scroll><table><tr><th rowspan=2>heuristic</th><th rowspan=2>shape</th><th rowspan=2>runs</th>"
+            f"<th rowspan=2>invariant + order violations</th>{head}</tr><tr>{sub}</tr>{rows}</table></div>")
+
+
+def segments_section(report, out_dir, how):
+    groups = segment_groups(report)
+    if not groups:
+        return "", ""
+    parts = ["<h2 id='segments'>2D segments: random autopartitions against the Paterson–Yao bound</h2>"
+             f"<p>{SEGMENT_SCENE} holds n pairwise disjoint segments in the unit square. A random autopartition "
+             "(heuristic random, strict shape: each node splits along the line of a segment chosen uniformly "
+             "from its cell) makes at most n + 2n ln n fragments in expectation [PatersonYao1990; deBerg2008 "
+             "§12.2]. Medians and least–greatest over seeds; 2D trees get size and shape metrics and the order "
+             "check on extruded walls, not the 3D query costs.</p>" + how + failing_runs(groups)]
+    bound_sizes = groups.get(("random", "strict"))
+    if bound_sizes:
+        png = "segments-bound.png"
+        plot_bound(bound_sizes, os.path.join(out_dir, png))
+        parts.append(f"<img src='{png}' alt='random autopartition fragments against the Paterson–Yao bound'>"
+                     + bound_table(bound_sizes))
+    # The sizes where more than the bound's series ran: there every heuristic and shape sit side by side.
+    sizes = sorted({n for key, runs in groups.items() if key != ("random", "strict") for n in runs})
+    if sizes:
+        parts.append("<h3>Every heuristic and shape (medians over seeds, ranked by fragments at the largest "
+                     "size)</h3>" + heuristics_table(groups, sizes))
+    return "<li><a href='#segments'>2D segments</a></li>", "".join(parts)
+
+
+# The doom-splits preset's target: ZokumBSP 1.1.1 with -na=s (fewest splits), built from source and
+# run on this machine on the 68 Freedoom maps (both IWADs), made 23,491 splits in total.
+ZOKUM = {"splits": 23491, "iwads": {"freedoom1.wad", "freedoom2.wad"}, "maps": 68}
+KIND_MARK = {"heuristic": "", "external": " (external)", "shipped": " (the WAD's own nodes)"}
+KIND_MARKER = {"heuristic": "o", "external": "s", "shipped": "D"}
+
+
+def doom_records(report):
+    """The doom records, jobs that threw included (as records with an error and nothing measured)."""
+    return [r for r in report["runs"] + report.get("failures", []) if r["id"].get("kind") == "doom"]
+
+
+def on_zokum_maps(total):
+    """Whether a builder built exactly the maps ZokumBSP's split count is for."""
+    return total["built"] == ZOKUM["maps"] and {iwad for iwad, _ in total["mapset"]} == ZOKUM["iwads"]
+
+
+def builder_name(rid):
+    """The preset, else the heuristic's label (which names external builders and "shipped" too)."""
+    return rid.get("preset") or rid.get("heuristic") or rid["builder"]
+
+
+def per_builder(records):
+    """Builder -> its records, one per map; a builder run with several seeds is one builder per seed."""
+    seeds = {}
+    for r in records:
+        seeds.setdefault(builder_name(r["id"]), set()).add(r["id"].get("seed"))
+    builders = {}
+    for r in records:
+        name = builder_name(r["id"])
+        if len(seeds[name]) > 1:
+            name += f" (seed {r['id']['seed']})"
+        builders.setdefault(name, []).append(r)
+    return builders
+
+
+def doom_cpu(record):
+    """Median CPU seconds of a map's timed builds; None for the shipped nodes, which nobody timed here."""
+    t = record.get("timings") or {}
+    if "doom_cpu_seconds" in t:
+        return t["doom_cpu_seconds"]
+    samples = t.get("builder_cpu_samples") or t.get("doom_cpu_samples")
+    return statistics.median(samples) if samples else None
+
+
+def doom_failed(record):
+    """Not built, or its nodes fail the structural check."""
+    return "error" in record or record["invariants"]["violations"] > 0
+
+
+def doom_totals(builders):
+    """One row per builder summed over the maps it built, sorted by splits."""
+    rows = []
+    for name, recs in builders.items():
+        built = [r for r in recs if "error" not in r]
+        cpus = [doom_cpu(r) for r in built]
+        total = {k: sum(r["metrics"][k] for r in built) for k in ("splits", "segs", "subsectors", "nodes")}
+        rows.append(dict(total, name=name, kind=recs[0]["id"]["builder_kind"], maps=len(recs), built=len(built),
+                         mapset={(r["id"]["iwad"], r["id"]["map"]) for r in built},
+                         cpu=sum(cpus) if cpus and None not in cpus else None,
+                         max_depth=statistics.mean(r["metrics"]["max_depth"] for r in built) if built else None,
+                         mean_depth=statistics.mean(r["metrics"]["mean_depth"] for r in built) if built else None,
+                         failed=sum(doom_failed(r) for r in recs)))
+    return sorted(rows, key=lambda t: t["splits"])
+
+
+def num(x, digits=4):
+    return "—" if x is None else f"{x:,}" if isinstance(x, int) else f"{x:.{digits}g}"
+
+
+def builder_cell(total):
+    """Ours in bold, the others in italics and said what they are."""
+    tag = "b" if total["kind"] == "heuristic" else "i"
+    return f"<td style='text-align:left'><{tag}>{html.escape(total['name'])}</{tag}>{KIND_MARK[total['kind']]}</td>"
+
+
+def totals_table(totals):
+    rows = "".join(
+        f"<tr>{builder_cell(t)}<td>{t['built']}{'' if t['built'] == t['maps'] else ' of ' + str(t['maps'])}</td>"
+        f"<td>{num(t['cpu'])}</td>"
+        f"<td>{t['splits']:,}</td><td>{t['segs']:,}</td><td>{t['subsectors']:,}</td><td>{t['nodes']:,}</td>"
+        f"<td>{num(t['max_depth'])}</td><td>{num(t['mean_depth'])}</td><td>{t['failed']}</td></tr>" for t in totals)
+    return ("<table><tr><th>builder</th><th>maps</th><th title='sum over maps of the median CPU seconds of the "
+            "timed builds'>CPU s</th><th>splits</th><th>segs</th><th>subsectors</th><th>nodes</th>"
+            "<th title='mean over maps of the maximum depth'>mean max depth</th>"
+            "<th title='mean over maps of the mean subsector depth'>mean subsector depth</th>"
+            "<th>maps failing the structural check (or not built)</th></tr>" + rows + "</table>")
+
+
+def margin(measured, reference, unit=""):
+    """How far under (or over) the reference, absolute and relative."""
+    diff = reference - measured
+    amount = f"{abs(diff):,}" if isinstance(diff, int) else f"{abs(diff):.3g}"
+    side = "under" if diff > 0 else "over" if diff < 0 else "exactly at"
+    relative = f" ({abs(diff) / reference:.1%})" if reference else ""
+    return f"{amount}{unit} {side}{relative}" if diff else side
+
+
+def target_rows(totals):
+    """The two presets' targets, each condition measured: (builder, condition, measured, reference, met, by)."""
+    zdbsp = next((t for t in totals if t["name"] == "zdbsp"), None)
+    rows = []
+    for t in totals:
+        preset = t["name"].partition(" (seed ")[0]  # every seed of a preset is judged
+        if preset == "doom-splits":
+            comparable = on_zokum_maps(t)
+            rows.append((t["name"], f"splits at most ZokumBSP 1.1.1 -na=s's {ZOKUM['splits']:,} (the "
+                         f"{ZOKUM['maps']} Freedoom maps, measured on this machine)", t["splits"], ZOKUM["splits"],
+                         t["splits"] <= ZOKUM["splits"] if comparable else None,
+                         margin(t["splits"], ZOKUM["splits"]) if comparable
+                         else f"not comparable: {t['built']} maps built, not the {ZOKUM['maps']}"))
+            if zdbsp and t["cpu"] is not None and zdbsp["cpu"] is not None:
+                rows.append(against_zdbsp(t, zdbsp, "CPU time no more than ZDBSP's in the same run", "cpu",
+                                          lambda a, b: a <= b, " s"))
+        if preset == "doom-depth" and zdbsp:
+            rows.append(against_zdbsp(t, zdbsp, "mean max depth at most ZDBSP's", "max_depth", lambda a, b: a <= b))
+            rows.append(against_zdbsp(t, zdbsp, "fewer splits than ZDBSP", "splits", lambda a, b: a < b))
+    return rows
+
+
+def against_zdbsp(total, zdbsp, condition, field, holds, unit=""):
+    """A target row against ZDBSP's total, judged only when both built the same maps."""
+    mine, ref = total[field], zdbsp[field]
+    if total["mapset"] != zdbsp["mapset"]:
+        return total["name"], condition, mine, ref, None, "not comparable: not the maps ZDBSP built"
+    return total["name"], condition, mine, ref, holds(mine, ref), margin(mine, ref, unit)
+
+
+def targets_html(totals):
+    rows = target_rows(totals)
+    if not rows:
+        return "<p>Targets not judged: neither preset (doom-splits, doom-depth) ran, or ZDBSP did not.</p>"
+    verdicts = []
+    for preset in dict.fromkeys(r[0] for r in rows):
+        met = [r[4] for r in rows if r[0] == preset]
+        word = "missed" if False in met else "not judged" if None in met else "met"
+        verdicts.append(f"<b>{html.escape(preset)}: target {word}</b>")
+    cells = "".join(
+        f"<tr><td>{html.escape(p)}</td><td style='text-align:left'>{html.escape(cond)}</td><td>{num(m, 5)}</td>"
+        f"<td>{num(ref, 5)}</td>"
+        f"<td>{'—' if ok is None else 'met' if ok else '<b>missed</b>'}</td><td>{html.escape(by)}</td></tr>"
+        for p, cond, m, ref, ok, by in rows)
+    return ("<p>" + "; ".join(verdicts) + ".</p><table><tr><th>preset</th><th>condition</th><th>measured</th>"
+            "<th>reference</th><th>verdict</th><th>by</th></tr>" + cells + "</table>")
+
+
+def plot_doom(totals, path):
+    """Splits against mean max depth and against CPU seconds, a point per builder, the front ringed."""
+    rows = math.ceil(len(totals) / 5)
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.5 + 0.25 * rows))
+    colours = plt.get_cmap("tab10").colors
+    for ax, field, title in ((axes[0], "max_depth", "mean max depth over maps"),
+                             (axes[1], "cpu", "CPU seconds, all maps")):
+        pts = [(t, t["splits"], t[field]) for t in totals if t[field] is not None and t["built"]]
+        front = non_dominated([(t["name"], (x, y)) for t, x, y in pts])
+        for i, t in enumerate(totals):
+            point = next(((x, y) for u, x, y in pts if u is t), None)
+            if point is None:
+                continue
+            ax.scatter(*point, marker=KIND_MARKER[t["kind"]], s=70, color=colours[i % len(colours)], zorder=2,
+                       label=t["name"] + KIND_MARK[t["kind"]])
+            if t["name"] in front:
+                ax.scatter(*point, s=240, facecolors="none", edgecolors="red", linewidths=1.5, zorder=3)
+        if any(on_zokum_maps(t) for t in totals):
+            ax.axvline(ZOKUM["splits"], color="grey", linestyle="--", linewidth=1)
+            ax.annotate("ZokumBSP -na=s", (ZOKUM["splits"], 0), xycoords=("data", "axes fraction"),
+                        xytext=(3, 4), textcoords="offset points", fontsize=7, color="grey")
+        ax.set_xlabel("splits, all maps")
+        ax.set_ylabel(title)
+        ax.set_title(f"{title} against splits", fontsize=9)
+        ax.grid(True, alpha=0.3)
+    # One legend for both panels, below them, so no name covers a point.
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=5, fontsize=8,
+               title="● ours, ■ external, ◆ shipped; red rings: not beaten on both axes", title_fontsize=8)
+    fig.tight_layout(rect=(0, 0.05 + 0.05 * rows, 1, 1))
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def per_map_table(builders, totals):
+    names = [t["name"] for t in totals]
+    maps = sorted({(r["id"]["iwad"], r["id"]["map"]) for recs in builders.values() for r in recs})
+    by_map = {(name, r["id"]["iwad"], r["id"]["map"]): r for name, recs in builders.items() for r in recs}
+
+    def cells(record):
+        if record is None:
+            return "<td></td><td></td>"
+        title = html.escape(record["id"].get("command", ""), quote=True)
+        if "error" in record:
+            return f"<td colspan=2 title='{title}'>error</td>"
+        mark = " ✗" if doom_failed(record) else ""
+        m = record["metrics"]
+        return f"<td title='{title}'>{m['splits']:,}{mark}</td><td>{m['max_depth']}</td>"
+    head = "".join(f"<th colspan=2>{html.escape(n)}</th>" for n in names)
+    rows = "".join(f"<tr><td>{html.escape(iwad)}</td><td>{html.escape(m)}</td>"
+                   + "".join(cells(by_map.get((n, iwad, m))) for n in names) + "</tr>" for iwad, m in maps)
+    return ("<details><summary>Per map: splits and max depth per builder (hover a splits cell for the command "
+            "that repeats the run; ✗ fails the structural check)</summary><div class=scroll><table><tr>"
+            f"<th rowspan=2>IWAD</th><th rowspan=2>map</th>{head}</tr>"
+            f"<tr>{'<th>splits</th><th>max depth</th>' * len(names)}</tr>{rows}</table></div></details>")
+
+
+def check_table(builders, totals):
+    rows = []
+    for t in totals:
+        recs = builders[t["name"]]
+        built = [r for r in recs if "error" not in r]
+        bad = sorted((r for r in built if r["invariants"]["violations"]),
+                     key=lambda r: (r["id"]["iwad"], r["id"]["map"]))
+        order = [r["validation"] for r in built if r.get("validation")]
+        first = next((f"{r['id']['map']}: {r['invariants']['first_problems'][0]}" for r in bad
+                      if r["invariants"].get("first_problems")), "")
+        errors = "; ".join(f"{r['id']['map']}: {r['error']}" for r in recs if "error" in r)
+        worst = {k: max((r["invariants"].get(k, 0) for r in built), default=None)
+                 for k in ("worst_side_distance", "worst_convexity_distance")}
+        rows.append(f"<tr>{builder_cell(t)}<td>{len(bad)}</td>"
+                    f"<td>{sum(r['invariants']['violations'] for r in built)}</td>"
+                    f"<td>{num(worst['worst_side_distance'])}</td><td>{num(worst['worst_convexity_distance'])}</td>"
+                    f"<td>{num(sum(v['violations'] for v in order) if order else None)}</td>"
+                    f"<td>{num(sum(v.get('rays', 0) for v in order) if order else None)}</td>"
+                    f"<td style='text-align:left'>{html.escape(first)}</td>"
+                    f"<td style='text-align:left'>{html.escape(errors)}</td></tr>")
+    return ("<table><tr><th>builder</th><th>maps with violations</th><th>violations</th>"
+            "<th title='largest distance (map units, over maps) of a seg endpoint on the wrong side of an "
+            "ancestor&#39;s partition, within the tolerance or not'>worst side distance</th>"
+            "<th title='largest distance (map units, over maps) of a seg endpoint behind the line of another seg "
+            "of its subsector, within the tolerance or not'>worst convexity distance</th>"
+            "<th>order-check violations</th><th>order-check rays</th><th>first problem</th><th>errors</th></tr>"
+            + "".join(rows) + "</table>")
+
+
+def doom_section(report, out_dir, how):
+    records = doom_records(report)
+    if not records:
+        return "", ""
+    parts = ["<h2 id='doom'>Doom maps: our heuristics beside the node builders</h2>"
+             "<p>Each run builds one map's nodes: our heuristics as leafy trees with one sector per leaf, written "
+             "as vanilla NODES/SEGS/SSECTORS, or an external node builder (ZDBSP, glBSP) run on the map alone, "
+             "or the nodes the WAD shipped with. Every builder's nodes are read back by the same parser and "
+             "proved by the same structural check; ours are also proved in back-to-front order against Embree "
+             "from the map's first things. CPU time is thread CPU for ours (build and lumps, one thread) and the "
+             "child's user + system time for the external builders, the median of the timed builds per map; "
+             "the shipped nodes have none. Bold: ours; italic: external builders and the shipped nodes.</p>" + how]
+    builders = per_builder(records)
+    totals = doom_totals(builders)
+    plot_doom(totals, os.path.join(out_dir, "doom.png"))
+    maps = {(r["id"]["iwad"], r["id"]["map"]) for r in records}
+    # Sums over different maps are not comparable; say so rather than rank them silently.
+    uneven = ("<p><b>Not every builder built every map (the maps column): compare totals only between builders "
+              "with the same maps.</b></p>" if len({t["built"] for t in totals}) > 1 else "")
+    parts.append(f"<h3>Totals over {len(maps)} maps of {html.escape(', '.join(sorted({i for i, _ in maps})))}</h3>"
+                 f"{uneven}{totals_table(totals)}<h3>Targets</h3>{targets_html(totals)}"
+                 "<img src='doom.png' alt='splits against depth and CPU time, a point per builder'>"
+                 f"{per_map_table(builders, totals)}<h3>Structural check</h3>{check_table(builders, totals)}"
+                 "<p>Violations in the nodes of ZDBSP, glBSP or the shipped nodes are facts about those nodes "
+                 "as the check reads them (a seg endpoint on the wrong side of a partition, or behind another "
+                 "seg of its subsector, farther than the tolerance kDoomSideTolerance of "
+                 "src/validate/doom_check.h; a subsector of two sectors), not failures of this benchmark; our "
+                 "builders must have none.</p>")
+    return "<li><a href='#doom'>Doom maps</a></li>", "".join(parts)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--in", dest="input", required=True)
@@ -604,9 +1041,10 @@ def main():
         fail(f"{args.out}: cannot create the output directory ({e})")
     scenes = by_scene(report)
     toc = "".join(f"<li><a href='#{slug(s)}'>{html.escape(s)}</a></li>" for s in scenes)
-    body = "".join(scene_section(s, aggs, args.out) for s, aggs in scenes.items())
-    for section in (merge_section, dynamic_section, occlusion_section):
-        more_toc, more_body = section(report, args.out)
+    how = reproduce(report, args.input, args.out)
+    body = "".join(scene_section(s, aggs, args.out, how) for s, aggs in scenes.items())
+    for section in (merge_section, dynamic_section, occlusion_section, segments_section, doom_section):
+        more_toc, more_body = section(report, args.out, how)
         toc += more_toc
         body += more_body
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>bspbench report</title>{STYLE}</head>"

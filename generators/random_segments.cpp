@@ -4,8 +4,9 @@
 // deBerg2008 §12.2]. One segment per cell of an m x m grid (m = ceil(sqrt(n)), cells in
 // x-fastest order), centred at a random point of its cell, in a random direction, `length` cells
 // long at most; a segment that would touch an earlier one is halved until it does not, and drawn
-// again when its centre lies on one. Long segments reach across many cells, so a partition line
-// through one meets many others: the bound is tested where it has something to say.
+// again (another centre and direction) when it would have to become shorter than kMinLength cells.
+// Long segments reach across many cells, so a partition line through one meets many others: the
+// bound is tested where it has something to say.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -20,7 +21,9 @@ namespace bsp {
 namespace {
 
 constexpr int kCentreDraws = 64;
-constexpr int kHalvings = 40;
+// The shortest segment drawn, in grid cells: a scene of comparable segments, none near the
+// tolerance (a segment that has to be shorter lies almost on an earlier one: another place is drawn).
+constexpr double kMinLength = 0.05;
 constexpr double kPi = 3.14159265358979323846;
 
 struct Seg {
@@ -94,8 +97,7 @@ Seg place(std::size_t i, std::size_t m, double max_cells, std::uint64_t seed, co
   for (int draw = 0; draw < kCentreDraws; ++draw) {
     const double cx = x0 + h * rng.uniform(), cy = y0 + h * rng.uniform();
     const double angle = 2 * kPi * rng.uniform();
-    double len = max_cells * h * (0.5 + 0.5 * rng.uniform());
-    for (int k = 0; k < kHalvings; ++k, len *= 0.5) {
+    for (double len = max_cells * h * (0.5 + 0.5 * rng.uniform()); len >= kMinLength * h; len *= 0.5) {
       const Seg s = segment_at(cx, cy, angle, len);
       if ((s.ax != s.bx || s.ay != s.by) && grid.free(s)) return s;
     }

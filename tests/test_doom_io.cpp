@@ -1,4 +1,4 @@
-// Doom's WAD files, classic maps and vanilla nodes (the Unofficial Doom Specs, Matt Fell, 1994):
+// Doom's WAD files, classic maps and vanilla nodes [DoomSpecs]:
 // Freedoom's WADs read and written again with every lump byte for byte, every malformed header,
 // directory and map lump rejected with one line naming the file, the lump and the problem, the
 // tree statistics of a small hand-made tree, and the structural check of vanilla nodes passing on

@@ -58,6 +58,17 @@ TEST(SegmentSplit, CutPointLiesOnBothLinesAndPartsKeepTheDirection) {
   EXPECT_NEAR(measure(front) + measure(back), measure(s), 1e-12);
 }
 
+// a × b in world coordinates loses the line of a short segment far from the origin (its terms are
+// 10^8 here, their rounding 10^-8, the segment 3·10^-7 long): the cut must stay on the segment.
+TEST(SegmentSplit, ShortSegmentFarFromTheOriginIsCutOnItsLine) {
+  const Vec3 a{1e4 + 0.1234, 1e4 - 0.5678, 0}, b = a + Vec3{3e-7, 1e-7, 0};
+  const Plane cut = *line_through(a + Vec3{1.5e-7, -1, 0}, a + Vec3{1.5e-7, 1, 0});
+  const Vec3 x = intersect(cut, a, b);
+  EXPECT_NEAR(line_through(a, b)->distance(x), 0.0, 1e-12);
+  EXPECT_NEAR(cut.distance(x), 0.0, 1e-12);
+  EXPECT_NEAR(x.x, a.x + 1.5e-7, 1e-11);
+}
+
 TEST(SegmentSplit, FrontIsTheRightOfTheDirection) {
   const Plane l = *line_through({0, 0, 0}, {1, 0, 0});
   EXPECT_LT(l.distance({0, 1, 0}), 0);

@@ -23,8 +23,10 @@
 #include "split/registry.h"
 #include "sweep/aggregate.h"
 #include "sweep/bench_gate.h"
+#include "sweep/doom_job.h"
 #include "sweep/journal.h"
 #include "sweep/merge.h"
+#include "sweep/node_builders.h"
 #include "sweep/progress.h"
 #include "sweep/record.h"
 #include "sweep/regress.h"
@@ -113,6 +115,29 @@ const nlohmann::json& tiny_dynamic_report() {
   return report;
 }
 
+// Suites with Doom blocks read the Freedoom IWADs as they expand (sweep/doom_job.h); tests of them
+// skip without the IWADs, as the other Doom tests do.
+bool freedoom_installed() {
+  return fs::exists(doom_iwad_path("freedoom1.wad")) && fs::exists(doom_iwad_path("freedoom2.wad"));
+}
+const std::string kNoFreedoom = "needs the Freedoom IWADs (apt-get install freedoom)";
+
+Suite doom_only(DoomBlock block) { return {"doom-test", "test suite", {}, {}, {}, {}, {std::move(block)}}; }
+
+// 8 Doom jobs: freedoom2's MAP01 and MAP02 built by crystal and naylor (seed 1, one view), by ZDBSP,
+// and as shipped.
+Suite tiny_doom_suite() {
+  return doom_only({{"freedoom2.wad"}, {"MAP01", "MAP02"}, {"crystal", "naylor"}, {"zdbsp"}, {1}, 1});
+}
+
+const nlohmann::json& tiny_doom_report() {
+  static const nlohmann::json report = sweep_once(tiny_doom_suite());
+  return report;
+}
+
+bool doom_runs_possible() { return freedoom_installed() && !find_builder("zdbsp").path.empty(); }
+const std::string kNoDoomRuns = "needs the Freedoom IWADs and ZDBSP (apt-get install freedoom zdbsp)";
+
 // Gives every run the same calibration and five samples of `field` with a known spread around
 // `time` (a job's own scale), times `factor` for the runs of `heuristic` (every run when empty).
 void set_samples(nlohmann::json& report, const std::string& field, double factor, const std::string& heuristic = "",
@@ -150,14 +175,19 @@ std::size_t drawn_scene_count() {
 }
 
 TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
+  if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
   for (const auto& suite : suites()) {
     SCOPED_TRACE(suite.name);
     const auto jobs = expand(suite);
-    std::set<std::string> keys, scenes, heuristics_seen, merge_heuristics;
+    std::set<std::string> keys, scenes, heuristics_seen, merge_heuristics, doom_heuristics;
     for (const auto& j : jobs) {
       keys.insert(j.key);
       if (j.op) {
         merge_heuristics.insert(j.heuristic);
+        continue;
+      }
+      if (j.doom) {
+        if (j.doom->builder == DoomBuilder::Kind::Heuristic) doom_heuristics.insert(j.heuristic);
         continue;
       }
       scenes.insert(j.scene);
@@ -171,12 +201,79 @@ TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
     }));
     if (!suite.blocks.empty()) {
       EXPECT_EQ(scenes.size() - flat, flat == scenes.size() ? 0 : drawn_scene_count());
-      if (flat == scenes.size()) EXPECT_EQ(flat, generators().size() - drawn_scene_count() - solid_count());
+      if (flat == scenes.size()) {
+        EXPECT_EQ(flat, generators().size() - drawn_scene_count() - solid_count());
+      }
       EXPECT_EQ(heuristics_seen.size(), heuristics().size());
     }
     if (!suite.merges.empty()) {
       EXPECT_EQ(merge_heuristics.size(), heuristics().size());
     }
+    // Doom maps: every registered heuristic and every Doom preset.
+    if (!suite.doom.empty()) {
+      EXPECT_EQ(doom_heuristics.size(), heuristics().size() + doom_presets().size());
+    }
+  }
+}
+
+// Per IWAD and map, a Doom block runs every heuristic label x seed, and each external builder and the
+// shipped nodes once, whatever the seeds. Presets resolve to their heuristic's parameters, and every
+// command repeats its run. A map the IWAD lacks, an unknown builder and a missing IWAD stop the
+// suite as it expands.
+TEST(SweepSuites, DoomBlocksRunHeuristicsPerSeedAndEachBuilderOncePerMap) {
+  if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
+  const DoomBlock block{{"freedoom2.wad"},
+                        {"MAP01", "MAP02"},
+                        {"crystal", "weighted:candidates=0,sample=64", "doom-splits"},
+                        {"zdbsp", "glbsp"},
+                        {1, 2},
+                        2};
+  const auto jobs = expand(doom_only(block));
+  EXPECT_EQ(jobs.size(), 2u * (3 * 2 + 2 + 1));
+  std::set<std::string> keys;
+  for (const auto& j : jobs) {
+    keys.insert(j.key);
+    ASSERT_EQ(j.kind(), JobKind::Doom);
+    const nlohmann::json id = job_identity(j);
+    const std::string command = id["command"];
+    SCOPED_TRACE(command);
+    EXPECT_EQ(command.rfind("bspbench doom --iwad freedoom2.wad --maps " + j.doom->map + " --heuristics ", 0), 0u);
+    EXPECT_EQ(id["builder"], j.heuristic);
+    if (j.doom->builder == DoomBuilder::Kind::Heuristic) {
+      EXPECT_EQ(id["builder_kind"], "heuristic");
+      EXPECT_NE(command.find(" --seed " + std::to_string(j.seed) + " --views 2 --json"), std::string::npos);
+    } else {
+      EXPECT_TRUE(id["seed"].is_null() && id["views"].is_null());
+      EXPECT_EQ(id["heuristic_params"], nlohmann::json::object());
+    }
+    if (j.heuristic == "doom-splits") {
+      EXPECT_EQ(id["preset"], "doom-splits");
+      EXPECT_EQ(id["heuristic_params"]["min_relation"], 0.05);
+      EXPECT_NE(command.find("--heuristics doom-splits "), std::string::npos);
+    }
+    if (j.heuristic[0] == 'w') {
+      EXPECT_NE(command.find("--heuristics weighted:candidates=0:sample=64 "), std::string::npos);
+    }
+    if (j.heuristic == "zdbsp") {
+      EXPECT_NE(command.find("--heuristics '' --builders zdbsp --json"), std::string::npos);
+    }
+  }
+  EXPECT_EQ(keys.size(), jobs.size());
+
+  DoomBlock bad = block;
+  bad.maps = {"MAP01", "MAP99"};
+  EXPECT_THROW(expand(doom_only(bad)), InputError);
+  bad = block;
+  bad.builders = {"bsp5"};
+  EXPECT_THROW(expand(doom_only(bad)), UsageError);
+  bad = block;
+  bad.iwads = {"doom3.wad"};
+  try {
+    expand(doom_only(bad));
+    ADD_FAILURE() << "a missing IWAD expanded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(doom_iwad_path("doom3.wad")), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("apt-get install freedoom"), std::string::npos) << e.what();
   }
 }
 
@@ -204,6 +301,7 @@ TEST(SweepSuites, MergeBlocksExpandToPairSizeHeuristicOperationAndSeed) {
 // The scorers whose sources score every plane run that way too, beside their sampled defaults, in
 // every suite but smoke; the label is the variant, and its parameters reach the build.
 TEST(SweepSuites, ExhaustiveVariantsRunBesideTheSampledDefaults) {
+  if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
   for (const char* name : {"quick", "default", "full"}) {
     std::set<std::string> variants;
     for (const auto& j : expand(find_suite(name))) {
@@ -222,6 +320,7 @@ TEST(SweepSuites, ExhaustiveVariantsRunBesideTheSampledDefaults) {
 // architecture builds one 136-polygon building at every n up to 300: the quick suite draws it once
 // per heuristic, shape and seed, at the smallest of those sizes, while every other scene keeps each size.
 TEST(SweepSuites, SizesThatMakeTheSameSceneRunOnce) {
+  if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
   std::map<std::string, std::set<std::uint64_t>> sizes;
   for (const auto& j : expand(find_suite("quick")))
     if (j.kind() == JobKind::Draw && j.heuristic == "crystal" && j.shape == Shape::Strict && j.seed == 1)
@@ -255,6 +354,7 @@ TEST(SweepSuites, HeuristicVariantLabelsParseAndBadOnesAreRejected) {
 // CI gates on the quick suite, so coarse leaves and the incremental build (one job per scene, size,
 // shape and seed, not one per heuristic) must be in it, on every scene.
 TEST(SweepSuites, QuickSuiteGatesCoarseLeavesAndTheIncrementalBuildOnEveryScene) {
+  if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
   std::set<std::string> coarse_scenes, incremental_scenes;
   std::map<std::string, int> incremental_per_scene;
   for (const auto& j : expand(find_suite("quick"))) {
@@ -397,7 +497,123 @@ TEST(RegressGateDynamic, ChangedWorkOrAViolationFailsAndSlowerUpdatesFailTheirSt
   EXPECT_EQ(r.changes[0].run, "city crystal merge");
 }
 
+// Doom runs: every builder's nodes measured and checked alike; ours also proved by Embree and timed
+// in batches of builds, ZDBSP's five runs timed, the shipped nodes not timed; every timing declared.
+// Aggregates pool an IWAD's maps per builder.
+TEST(SweepRecord, DoomRunsHoldTheirNodesTheirChecksAndTheirSamples) {
+  if (!doom_runs_possible()) GTEST_SKIP() << kNoDoomRuns;
+  const nlohmann::json& report = tiny_doom_report();
+  ASSERT_EQ(report["runs"].size(), 8u);
+  ASSERT_EQ(report["failures"].size(), 0u);
+  EXPECT_EQ(report["summary"]["invariant_violations"], 0);
+  std::map<std::string, std::set<std::uint64_t>> sides_per_map;
+  for (const auto& run : report["runs"]) {
+    const auto& id = run["id"];
+    SCOPED_TRACE(id["command"].get<std::string>());
+    ASSERT_EQ(id["kind"], "doom");
+    sides_per_map[id["map"]].insert(id["n_polygons"].get<std::uint64_t>());
+    EXPECT_EQ(id["map_hash"].get<std::string>().size(), 16u);
+    const auto& m = run["metrics"];
+    EXPECT_EQ(m["segs"].get<std::int64_t>(), id["n_polygons"].get<std::int64_t>() + m["splits"].get<std::int64_t>());
+    EXPECT_GT(m["max_depth"].get<std::uint64_t>(), 0u);
+    EXPECT_EQ(run["invariants"]["violations"], 0);
+    EXPECT_FALSE(run.contains("error"));
+    const auto& t = run["timings"];
+    for (const auto& [k, v] : t.items()) EXPECT_NE(find_timing_field(k), nullptr) << k;
+    if (id["builder_kind"] == "heuristic") {
+      EXPECT_EQ(m["mixed_leaves"], 0);
+      EXPECT_TRUE(m.contains("rounding_max_shift"));
+      EXPECT_EQ(run["validation"]["violations"], 0);
+      EXPECT_GT(run["validation"]["rays"].get<std::uint64_t>(), 0u);
+      EXPECT_EQ(t["doom_cpu_samples"].size(), static_cast<std::size_t>(kBuildSamples));
+      EXPECT_GE(t["doom_cpu_runs"].get<std::uint64_t>(), static_cast<std::uint64_t>(kBuildSamples));
+    } else if (id["builder_kind"] == "external") {
+      EXPECT_TRUE(run["validation"].is_null());
+      EXPECT_EQ(t["builder_cpu_samples"].size(), static_cast<std::size_t>(kBuildSamples));
+      EXPECT_NE(id["builder_version"].get<std::string>().find("ZDBSP"), std::string::npos);
+    } else {
+      EXPECT_EQ(id["builder_kind"], "shipped");
+      EXPECT_EQ(t.size(), 1u);  // job_seconds
+    }
+  }
+  // Every builder starts from the same linedef sides of a map.
+  for (const auto& [map, sides] : sides_per_map) EXPECT_EQ(sides.size(), 1u) << map;
+  std::size_t doom_groups = 0;
+  for (const auto& g : report["aggregates"]) {
+    if (g["kind"] != "doom") continue;
+    ++doom_groups;
+    EXPECT_EQ(g["by_n"][0]["runs"], 2);  // the two maps
+    EXPECT_FALSE(g["growth"]["segs"].is_null()) << g["heuristic"];
+  }
+  EXPECT_EQ(doom_groups, 4u);  // crystal, naylor, zdbsp, shipped
+}
+
+// BSPBENCH_PLANT_SLOWDOWN names a heuristic label, and reaches the timed builds of its Doom runs.
+TEST(SweepRecord, PlantedSlowdownOfAHeuristicSlowsItsDoomBuilds) {
+  if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
+  const auto jobs = expand(doom_only({{"freedoom2.wad"}, {"MAP01"}, {"crystal"}, {}, {1}, 1}));
+  const Job& ours = jobs.front();
+  ASSERT_EQ(ours.heuristic, "crystal");
+  const double plain = run_job(ours)["timings"]["doom_cpu_seconds"].get<double>();
+  const double planted = run_job(ours, PlantedSlowdown{"crystal", 3})["timings"]["doom_cpu_seconds"].get<double>();
+  EXPECT_GT(planted / plain, 2.0) << plain << " s, planted " << planted << " s";
+}
+
+// The gate on Doom runs: a changed split count fails, and so does a structural violation in our
+// nodes, but not one in the shipped nodes (a fact about them: MAP09's shipped nodes put a seg 7.6
+// units on the wrong side); builds of one heuristic 1.6x slower fail its group alone.
+TEST(RegressGateDoom, ChangedSplitsOrOurViolationFailsAShippedViolationDoesNotAndSlowerBuildsFail) {
+  if (!doom_runs_possible()) GTEST_SKIP() << kNoDoomRuns;
+  nlohmann::json baseline = tiny_doom_report(), current = tiny_doom_report();
+  for (auto* report : {&baseline, &current}) {
+    set_samples(*report, "doom_cpu_samples", 1.0);
+    for (auto& run : (*report)["runs"])
+      if (run["id"]["builder_kind"] != "heuristic") run["timings"].erase("doom_cpu_samples");
+  }
+  RegressResult r = compare_reports(baseline, current, {});
+  EXPECT_FALSE(r.failed());
+  EXPECT_EQ(r.timing_groups, 2u);  // crystal and naylor, each pooling both maps
+  const auto index_of = [&](const std::string& builder_kind) {
+    std::size_t i = 0;
+    while (current["runs"][i]["id"]["builder_kind"] != builder_kind) ++i;
+    return i;
+  };
+  const std::size_t ours = index_of("heuristic"), shipped = index_of("shipped");
+
+  nlohmann::json changed = current;
+  auto& splits = changed["runs"][ours]["metrics"]["splits"];
+  splits = splits.get<std::int64_t>() + 1;
+  r = compare_reports(baseline, changed, {});
+  ASSERT_TRUE(r.failed());
+  EXPECT_EQ(r.changes[0].field, "metrics.splits");
+
+  const auto violated = [&](std::size_t run) {
+    nlohmann::json base = baseline, cur = current;
+    base["runs"][run]["invariants"]["violations"] = 1;
+    cur["runs"][run]["invariants"]["violations"] = 1;
+    return compare_reports(base, cur, {}).failed();
+  };
+  EXPECT_TRUE(violated(ours));
+  EXPECT_FALSE(violated(shipped));
+  nlohmann::json runs = current["runs"];
+  runs[shipped]["invariants"]["violations"] = 1;
+  const nlohmann::json summary =
+      assemble_report(current["suite"], current["shards"], runs, nlohmann::json::array())["summary"];
+  EXPECT_EQ(summary["invariant_violations"], 0);
+  EXPECT_EQ(summary["others_violations"], 1);
+
+  for (auto& run : current["runs"])
+    if (run["id"]["heuristic"] == "crystal")
+      for (auto& x : run["timings"]["doom_cpu_samples"]) x = x.get<double>() * 1.6;
+  r = compare_reports(baseline, current, {});
+  ASSERT_TRUE(r.failed());
+  ASSERT_EQ(r.changes.size(), 1u);
+  EXPECT_EQ(r.changes[0].field, "timings.doom_cpu_samples");
+  EXPECT_EQ(r.changes[0].run, "freedoom2.wad crystal doom");
+}
+
 TEST(SweepShards, PartitionTheSuiteDeterministically) {
+  if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
   const auto jobs = expand(find_suite("quick"));
   std::multiset<std::string> seen;
   for (std::uint32_t i = 0; i < 3; ++i)

@@ -200,3 +200,70 @@ TEST_F(SweepCli, PlantedSlowdownOfOneHeuristicFailsExactlyItsGroups) {
   EXPECT_NE(err_.find("BSPBENCH_PLANT_SLOWDOWN"), std::string::npos) << err_;
   EXPECT_FALSE(fs::exists(dir_ / "x.json"));
 }
+
+// The report's 2D segment and Doom sections, from a hand-made report whose answers are known: the
+// random autopartition stays under n + 2n ln n at both sizes; doom-depth beats ZDBSP on depth with
+// fewer splits; doom-splits beats ZDBSP's CPU time but is not judged against ZokumBSP's total,
+// which is for all 68 maps; the shipped nodes' violations are counted. Every linked plot is a PNG.
+TEST_F(SweepCli, ReportRendersTheSegmentBoundAndDoomSections) {
+  nlohmann::json runs = nlohmann::json::array();
+  const auto segment_run = [&](int n, const std::string& heuristic, const std::string& shape, int seed, int fragments) {
+    runs.push_back({{"key", "s" + std::to_string(runs.size())},
+                    {"id", {{"kind", "draw"}, {"scene", "random-segments"}, {"n", n}, {"n_polygons", n},
+                            {"scene_params", {{"n", n}, {"seed", seed}}}, {"heuristic", heuristic}, {"shape", shape},
+                            {"seed", seed}, {"command", "bspbench build --scene random-segments --n " + std::to_string(n)}}},
+                    {"metrics", {{"fragments", fragments}, {"max_depth", 20}, {"mean_depth", 9.5}}},
+                    {"invariants", {{"violations", 0}, {"first_problems", nlohmann::json::array()}}},
+                    {"validation", nullptr},
+                    {"timings", {{"build_cpu_samples", {0.001, 0.001}}, {"build_cpu_seconds", 0.001}}},
+                    {"calibration_seconds", 0.01}});
+  };
+  segment_run(100, "random", "strict", 1, 150);
+  segment_run(100, "random", "strict", 2, 160);
+  segment_run(1000, "random", "strict", 1, 2000);
+  segment_run(1000, "random", "strict", 2, 2100);
+  segment_run(1000, "crystal", "leafy", 1, 1500);
+  // Per map: splits, max depth, CPU seconds (none for the shipped nodes), structural violations.
+  const auto doom_run = [&](const std::string& map, const std::string& name, const std::string& kind, int splits,
+                            int max_depth, double cpu, int violations) {
+    nlohmann::json timings = nlohmann::json::object();
+    if (kind == "heuristic") timings = {{"doom_cpu_samples", {cpu, cpu}}, {"doom_cpu_seconds", cpu}};
+    if (kind == "external") timings = {{"builder_cpu_samples", {cpu, cpu, cpu}}};
+    runs.push_back({{"key", "d" + std::to_string(runs.size())},
+                    {"id", {{"kind", "doom"}, {"scene", "freedoom2.wad"}, {"iwad", "freedoom2.wad"}, {"map", map},
+                            {"builder", name}, {"builder_kind", kind}, {"shape", "leafy"}, {"n", 0}, {"n_polygons", 1000},
+                            {"scene_params", nlohmann::json::object()},
+                            {"preset", kind == "heuristic" ? nlohmann::json(name) : nullptr},
+                            {"heuristic", name}, {"seed", 1}, {"command", "bspbench doom --maps " + map}}},
+                    {"metrics", {{"segs", 1000 + splits}, {"subsectors", 300}, {"nodes", 299}, {"splits", splits},
+                                 {"max_depth", max_depth}, {"mean_depth", max_depth / 2.0}}},
+                    {"invariants", {{"violations", violations}, {"first_problems", nlohmann::json::array()},
+                                    {"worst_side_distance", 0.5}, {"worst_convexity_distance", 0.5}}},
+                    {"validation", kind == "heuristic" ? nlohmann::json{{"violations", 0}, {"rays", 100}} : nullptr},
+                    {"timings", timings},
+                    {"calibration_seconds", 0.01}});
+  };
+  for (const std::string map : {"MAP01", "MAP02"}) {
+    doom_run(map, "doom-splits", "heuristic", 100, 20, 0.01, 0);
+    doom_run(map, "doom-depth", "heuristic", 150, 10, 0.01, 0);
+    doom_run(map, "zdbsp", "external", 200, 12, 0.02, 0);
+    doom_run(map, "shipped", "shipped", 90, 30, 0, map == "MAP02" ? 2 : 0);
+  }
+  const nlohmann::json report{{"schema", "bspbench-report"}, {"version", kReportVersion},
+                              {"suite", {{"name", "doom"}, {"definition_hash", "0"}, {"jobs", runs.size()}}},
+                              {"shards", {{{"index", 0}, {"count", 1}, {"jobs", runs.size()}}}},
+                              {"summary", nlohmann::json::object()}, {"aggregates", nlohmann::json::array()},
+                              {"runs", runs}, {"failures", nlohmann::json::array()}};
+  std::ofstream(dir_ / "made.json") << report.dump();
+  ASSERT_EQ(bspbench("report --in made.json --out html"), 0) << err_;
+  const std::string page = slurp(dir_ / "html" / "index.html");
+  for (const char* expected : {"Paterson–Yao bound", "Every size stays under the bound", "Doom maps: our heuristics",
+                               "doom-depth: target met", "doom-splits: target not judged",
+                               "<code>bspbench sweep --suite doom --out made.json</code>"})
+    EXPECT_NE(page.find(expected), std::string::npos) << expected;
+  const std::regex img("<img src='([^']+)'");
+  std::size_t images = 0;
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), img); it != std::sregex_iterator(); ++it, ++images)
+    EXPECT_TRUE(is_png(dir_ / "html" / (*it)[1].str())) << (*it)[1].str();
+  EXPECT_EQ(images, 2u);  // the bound plot, and the Doom Pareto plots (one image)
+}

@@ -4,6 +4,8 @@
 // our outputs fails a check.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
@@ -70,6 +72,15 @@ std::vector<std::string> maps_from(const Wad& wad, const std::string& text, cons
   return out;
 }
 
+// A WAD named without a directory that is not in the working directory is looked up where Debian
+// installs them (or in BSPBENCH_DOOM_DIR), as Doom ports search DOOMWADDIR: --iwad freedoom2.wad.
+std::string resolve_wad(const std::string& name) {
+  if (name.find('/') != std::string::npos || std::filesystem::exists(name)) return name;
+  const char* dir = std::getenv("BSPBENCH_DOOM_DIR");
+  const auto installed = std::filesystem::path(dir ? dir : "/usr/share/games/doom") / name;
+  return std::filesystem::exists(installed) ? installed.string() : name;
+}
+
 void print_totals(const std::vector<DoomTotals>& totals) {
   std::printf("%-28s %5s %9s %9s %9s %11s %9s %9s %9s %6s\n", "builder", "maps", "CPU s", "splits", "segs",
               "subsectors", "nodes", "max depth", "leaf depth", "failed");
@@ -80,7 +91,7 @@ void print_totals(const std::vector<DoomTotals>& totals) {
 }
 
 int run(Args& args) {
-  const std::string iwad = args.required("--iwad");
+  const std::string iwad = resolve_wad(args.required("--iwad"));
   const std::string maps_text = args.option("--maps").value_or("all");
   const std::string heuristics_text = args.required("--heuristics");
   const std::string builders_text = args.option("--builders").value_or("");
@@ -93,11 +104,12 @@ int run(Args& args) {
   const std::vector<DoomBuilder> builders = builders_from(heuristics_text, builders_text);
   const Wad wad = read_wad(iwad);
   const std::vector<std::string> maps = maps_from(wad, maps_text, iwad);
+  // Every map is read (and refused if malformed) before anything is built or written.
+  std::vector<DoomMap> read;
+  for (const auto& name : maps) read.push_back(read_map(wad, name, iwad));
   std::vector<DoomRun> runs;
-  for (const auto& name : maps) {
-    const DoomMap map = read_map(wad, name, iwad);
+  for (const DoomMap& map : read)
     for (const DoomBuilder& b : builders) runs.push_back(sweep::run_doom(iwad, wad, map, b, settings));
-  }
   const std::vector<DoomTotals> totals = sweep::doom_totals(runs);
   bool ours_ok = true;
   for (const DoomRun& r : runs) ours_ok &= r.kind != DoomBuilder::Kind::Heuristic || r.ok;
@@ -123,7 +135,9 @@ Command doom_command() {
           "[--seed S] [--views K] [--json]",
           "build the maps of a Doom WAD with our heuristics and with installed node builders, and compare",
           run,
-          {{"--iwad FILE", "the WAD whose maps are built (an IWAD or a PWAD)"},
+          {{"--iwad FILE",
+            "the WAD whose maps are built (an IWAD or a PWAD); a bare name not in the working directory is looked "
+            "up in BSPBENCH_DOOM_DIR, default /usr/share/games/doom"},
            {"--maps all|MAP,...", "the maps to build (default all)"},
            {"--heuristics all|NAME[:k=v...][,...]",
             "our heuristics, each with optional parameters, or the presets doom-splits (min-relation, 64 candidates, "

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "sweep/record.h"
 #include "sweep/report.h"
 #include "sweep/runner.h"
 
@@ -22,11 +23,15 @@ void summarize(const nlohmann::json& report, const std::string& out) {
   const auto& s = report["summary"];
   std::cout << "sweep: wrote " << out << ": " << s["runs"] << " runs, " << s["failures"] << " failed jobs, "
             << s["invariant_violations"] << " invariant and " << s["validation_violations"]
-            << " validation violations, " << s["ray_shoot_mismatches"] << " ray-shooting mismatches\n";
+            << " validation violations, " << s["ray_shoot_mismatches"] << " ray-shooting mismatches";
+  if (s.contains("others_violations") && s["others_violations"] != 0)
+    std::cout << " (and " << s["others_violations"] << " in nodes made by external builders or shipped with a WAD)";
+  std::cout << "\n";
   for (const auto& f : report["failures"])
     std::cerr << "sweep: job " << f["id"]["command"].get<std::string>() << " failed: " << f["error"].get<std::string>()
               << "\n";
   for (const auto& r : report["runs"]) {
+    if (!sweep::judged_for_violations(r["id"])) continue;  // facts about another builder's nodes
     const bool broken = r["invariants"]["violations"] != 0 ||
                         (r["validation"].is_object() && r["validation"]["violations"] != 0) ||
                         (r.contains("ray_shooting") && r["ray_shooting"].is_object() &&
@@ -59,9 +64,11 @@ int run(Args& args) {
 
 Command sweep_command() {
   return {"sweep",
-          "--suite smoke|quick|default|full [--threads N] [--shard i/N] [--out FILE] [--journal-dir DIR] [--fresh]",
+          "--suite NAME [--threads N] [--shard i/N] [--out FILE] [--journal-dir DIR] [--fresh]",
           "run a suite of builds (scenes x heuristics x seeds x sizes), resumable, and write its report", run,
-          {{"--suite NAME", "which suite (src/sweep/suite.h; README lists them with run times)"},
+          {{"--suite NAME",
+            "which suite: smoke, quick, default, merge, dynamic, occlusion, segments, doom or full (src/sweep/suite.h; "
+            "README lists them with run times)"},
            {"--threads N", "jobs run at once (default: OMP_NUM_THREADS or the core count)"},
            {"--shard i/N", "run only share i of N (0-based) of the suite's jobs; merge with merge-reports"},
            {"--out FILE", "the report (default results/report.json)"},

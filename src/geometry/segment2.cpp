@@ -33,10 +33,13 @@ double measure(const Polygon& poly) {
 bool is_thin(const Polygon& poly, double eps) { return is_segment(poly) ? measure(poly) < eps : is_sliver(poly, eps); }
 
 Vec3 intersect(const Plane& l, const Vec3& a, const Vec3& b) {
-  const Vec3 lh{l.n.x, l.n.y, l.d};
-  const Vec3 mh = cross(Vec3{a.x, a.y, 1.0}, Vec3{b.x, b.y, 1.0});
+  // In coordinates centred at a: there l = (a', b', c) with c = l·(a, 1), and l' = (0, 0, 1) × (e, 1)
+  // = (-e.y, e.x, 0) with e = b - a, free of cancellation; a × b in world coordinates cancels its
+  // large terms for a short segment far from the origin and moves the line by more than plane_eps.
+  const Vec3 lh{l.n.x, l.n.y, l.distance(Vec3{a.x, a.y, 0.0})};
+  const Vec3 mh{-(b.y - a.y), b.x - a.x, 0.0};
   const Vec3 x = cross(lh, mh);
-  return {x.x / x.z, x.y / x.z, 0.0};
+  return {a.x + x.x / x.z, a.y + x.y / x.z, 0.0};
 }
 
 namespace {

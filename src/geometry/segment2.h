@@ -32,7 +32,8 @@ double measure(const Polygon& poly);
 bool is_thin(const Polygon& poly, double eps);
 
 // The point where line l meets the line through a and b: x = l × l' with l' = a × b in homogeneous
-// coordinates [BSP2DSlides], divided by its weight. Only for a segment that crosses l.
+// coordinates [BSP2DSlides], divided by its weight, computed in coordinates centred at a. Only for
+// a segment that crosses l.
 Vec3 intersect(const Plane& l, const Vec3& a, const Vec3& b);
 
 // Splits a segment classified Spanning by a line [BSP2DSlides]: the part on v0's side is (v0, x),

@@ -1,5 +1,5 @@
 #pragma once
-// Classic Doom maps and their vanilla BSP (the Unofficial Doom Specs, Matt Fell, 1994). A map is a
+// Classic Doom maps and their vanilla BSP [DoomSpecs]. A map is a
 // marker lump (ExMy or MAPxx) followed by its lumps: THINGS, LINEDEFS, SIDEDEFS, VERTEXES, SEGS,
 // SSECTORS, NODES, SECTORS, REJECT, BLOCKMAP. The node builder's output is SEGS (pieces of
 // linedef sides), SSECTORS (convex leaves, each a run of consecutive segs), NODES (partition lines)

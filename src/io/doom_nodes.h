@@ -1,6 +1,5 @@
 #pragma once
-// Doom maps as 2D scenes, and leafy trees as vanilla nodes (the Unofficial Doom Specs, Matt Fell,
-// 1994; formats in io/doom_map.h).
+// Doom maps as 2D scenes, and leafy trees as vanilla nodes ([DoomSpecs]; formats in io/doom_map.h).
 //
 // Map to scene: every linedef side is one segment (but a side coinciding with another, DoomSegs) (geometry/segment2.h), v1 → v2 for the right
 // side and v2 → v1 for the left, so a segment's front (its right) faces the sector of its side, the

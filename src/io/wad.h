@@ -1,5 +1,5 @@
 #pragma once
-// WAD files, the container of Doom's data (the Unofficial Doom Specs, Matt Fell, 1994): a 12-byte
+// WAD files, the container of Doom's data [DoomSpecs]: a 12-byte
 // header ("IWAD" or "PWAD", lump count, directory offset, little-endian int32), the lumps' bytes,
 // and a directory of 16-byte entries (offset, size, name of up to 8 characters NUL-padded).
 // A Wad is the directory in order with each lump's bytes copied out, so lumps can be replaced

@@ -26,6 +26,10 @@ constexpr std::array<std::string_view, 2> kAnimateGrowthMetrics = {"fragments_la
 constexpr std::array<std::string_view, 1> kAnimateGrowthTimings = {"update_cpu_seconds"};
 constexpr std::array<std::string_view, 3> kOccludeGrowthMetrics = {"emitted", "seen_by_embree", "beam_nodes"};
 constexpr std::array<std::string_view, 1> kOccludeGrowthTimings = {"occlude_cpu_seconds"};
+// Doom runs pool an IWAD's maps (all at n = 0): the fits say how the nodes and the build time grow
+// with the map's linedef sides (n_polygons), ours and the external builders' alike.
+constexpr std::array<std::string_view, 3> kDoomGrowthMetrics = {"segs", "splits", "nodes"};
+constexpr std::array<std::string_view, 2> kDoomGrowthTimings = {"doom_cpu_seconds", "builder_cpu_seconds"};
 
 struct Group {
   nlohmann::json head;                                      // scene, heuristic, shape, scene_params
@@ -48,6 +52,7 @@ nlohmann::json group_head(const nlohmann::json& id) {
   if (head["kind"] == "animate")
     for (const char* k : {"strategy", "object_heuristic", "moving", "speed", "frames", "object", "object_n", "size", "spin"})
       head[k] = id[k];
+  if (head["kind"] == "doom") head["builder_kind"] = id["builder_kind"];
   return head;
 }
 
@@ -130,6 +135,11 @@ nlohmann::json group_json(const Group& g) {
   if (g.head["kind"] == "occlude") {
     out["growth"] = growth_section(g, "metrics", kOccludeGrowthMetrics);
     out["timing_growth"] = growth_section(g, "timings", kOccludeGrowthTimings);
+    return out;
+  }
+  if (g.head["kind"] == "doom") {
+    out["growth"] = growth_section(g, "metrics", kDoomGrowthMetrics);
+    out["timing_growth"] = growth_section(g, "timings", kDoomGrowthTimings);
     return out;
   }
   out["growth"] = growth_section(g, "metrics", kGrowthMetrics);

@@ -60,28 +60,17 @@ void run_ours(const Wad& wad, const DoomMap& map, const DoomBuilder& b, const Do
   r.segments = segs.segs.size();
   r.dropped = segs.zero_length;
   r.coincident = segs.coincident_sides;
-  const Box box = bounds_of(segs);
-  IntegerLines lines(box.center());
-  BuildOptions options;
-  options.shape = Shape::Leafy;
-  options.leaf_groups = segs.sector;
-  options.snap_free_plane = [&lines](const Plane& p) { return lines.snap(p); };
-  auto splitter = make_splitter(b.name, b.params, s.seed);
   const double start = thread_cpu_seconds();
-  auto [tree, vanilla] = on_one_thread([&] {
-    Tree t = build_tree(segs.segs, *splitter, options);
-    VanillaBuild v = to_vanilla(t, map, segs, lines);
-    return std::pair(std::move(t), std::move(v));
-  });
+  const OurNodes ours = build_our_nodes(map, segs, b, s.seed);
   r.cpu_seconds = thread_cpu_seconds() - start;
-  r.fallbacks = tree.stats.fallbacks;
-  r.mixed_leaves = tree.stats.mixed_leaves;
-  r.rounding = vanilla.rounding;
-  r.stats = doom_tree_stats(map, vanilla.nodes);
-  r.check = check_doom_nodes(map, vanilla.nodes);
-  r.order = validate_segment_tree(tree, doom_eyes(wad, map, s.views));
+  r.fallbacks = ours.tree.stats.fallbacks;
+  r.mixed_leaves = ours.tree.stats.mixed_leaves;
+  r.rounding = ours.vanilla.rounding;
+  r.stats = doom_tree_stats(map, ours.vanilla.nodes);
+  r.check = check_doom_nodes(map, ours.vanilla.nodes);
+  r.order = validate_segment_tree(ours.tree, doom_eyes(wad, map, s.views));
   r.ok = r.check.ok() && r.order->ok() && r.mixed_leaves == 0;
-  if (!s.out_dir.empty()) write_ours(wad, map, vanilla.nodes, s.out_dir, b.label());
+  if (!s.out_dir.empty()) write_ours(wad, map, ours.vanilla.nodes, s.out_dir, b.label());
 }
 
 void measure_nodes(const Wad& wad, const DoomMap& map, const std::string& file, DoomRun& r) {
@@ -130,6 +119,20 @@ void run_external(const Wad& wad, const DoomMap& map, const DoomBuilder& b, cons
 }
 
 }  // namespace
+
+OurNodes build_our_nodes(const DoomMap& map, const DoomSegs& segs, const DoomBuilder& builder, std::uint64_t seed) {
+  IntegerLines lines(bounds_of(segs).center());
+  BuildOptions options;
+  options.shape = Shape::Leafy;
+  options.leaf_groups = segs.sector;
+  options.snap_free_plane = [&lines](const Plane& p) { return lines.snap(p); };
+  auto splitter = make_splitter(builder.name, builder.params, seed);
+  return on_one_thread([&] {
+    Tree tree = build_tree(segs.segs, *splitter, options);
+    VanillaBuild vanilla = to_vanilla(tree, map, segs, lines);
+    return OurNodes{std::move(tree), std::move(vanilla)};
+  });
+}
 
 std::string DoomBuilder::label() const {
   if (!preset.empty()) return preset;

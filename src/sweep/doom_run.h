@@ -73,6 +73,15 @@ struct DoomRun {
 // integer grid by a fraction of a unit so that no wall is seen edge-on.
 std::vector<Vec3> doom_eyes(const Wad& wad, const DoomMap& map, int views);
 
+// Our leafy tree of the map's segments (doom_segs(map)) by `builder` (a heuristic) and its vanilla
+// lumps, on one thread: the work whose CPU time run_doom reports for our heuristics, apart so a
+// sweep can time it in batches (run_doom_job.h) without the checks.
+struct OurNodes {
+  Tree tree;
+  VanillaBuild vanilla;
+};
+OurNodes build_our_nodes(const DoomMap& map, const DoomSegs& segs, const DoomBuilder& builder, std::uint64_t seed);
+
 DoomRun run_doom(const std::string& wad_path, const Wad& wad, const DoomMap& map, const DoomBuilder& builder,
                  const DoomRunSettings& settings);
 

@@ -12,6 +12,7 @@
 #include "dynamic/updater.h"
 #include "solid_pairs.h"
 #include "split/registry.h"
+#include "sweep/doom_job.h"
 #include "tree/build.h"
 
 namespace bsp::sweep {
@@ -56,7 +57,8 @@ std::vector<std::string> heuristic_names(const SuiteBlock& block) {
 
 Job make_job(const GeneratorInfo& g, const std::string& heuristic, bool incremental, Shape shape,
              std::uint64_t seed, std::uint64_t n, std::uint32_t views) {
-  Job job{g.name, {}, heuristic, incremental, shape, seed, n, views, std::nullopt, 0, {}, std::nullopt, false};
+  Job job{g.name, {}, heuristic, incremental, shape, seed, n, views, std::nullopt, 0, {}, std::nullopt, false,
+          std::nullopt};
   if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
   if (find_spec(g, "seed")) job.scene_params.emplace_back("seed", std::to_string(seed));
   assign_key(job);
@@ -92,7 +94,8 @@ void expand_merge_block(const MergeBlock& block, std::vector<Job>& out) {
       for (const auto& h : heuristic_names(heuristics_only))
         for (auto op : set_ops(block))
           for (auto seed : block.seeds) {
-            Job job{pair.name, {}, h, false, Shape::Strict, seed, n, 0, op, block.points, {}, std::nullopt, false};
+            Job job{pair.name, {}, h, false, Shape::Strict, seed, n, 0, op, block.points, {}, std::nullopt, false,
+                    std::nullopt};
             if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
             job.scene_params.emplace_back("seed", std::to_string(seed));
             assign_key(job);
@@ -303,6 +306,7 @@ void assign_key(Job& job) {
     case JobKind::Merge: job.key = merge_hash(job); break;
     case JobKind::Animate:
     case JobKind::Occlude: job.key = dynamic_hash(job); break;
+    case JobKind::Doom: job.key = doom_key(job); break;
     case JobKind::Draw: job.key = run_hash(job, scene_params(job).canonical()); break;
   }
 }
@@ -312,6 +316,7 @@ std::string_view job_kind_name(JobKind kind) {
     case JobKind::Merge: return "merge";
     case JobKind::Animate: return "animate";
     case JobKind::Occlude: return "occlude";
+    case JobKind::Doom: return "doom";
     case JobKind::Draw: break;
   }
   return "draw";
@@ -342,6 +347,7 @@ std::vector<Job> expand(const Suite& suite) {
   for (const auto& block : suite.merges) expand_merge_block(block, all);
   for (const auto& block : suite.animations) expand_animate_block(block, all);
   for (const auto& block : suite.occlusions) expand_occlude_block(block, all);
+  for (const auto& block : suite.doom) expand_doom_block(block, all);
   // Smallest nominal size first, so a scene built at several sizes runs once, at the smallest.
   std::stable_sort(all.begin(), all.end(), [](const Job& a, const Job& b) { return a.n < b.n; });
   std::vector<Job> jobs;
@@ -410,6 +416,7 @@ nlohmann::json drawing_identity(const Job& job);
 
 nlohmann::json job_identity(const Job& job) {
   if (job.op) return merge_identity(job);
+  if (job.doom) return doom_identity(job);
   if (job.animate) {
     const AnimateParams& a = *job.animate;
     nlohmann::json id = drawing_identity(job);

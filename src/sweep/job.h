@@ -5,11 +5,13 @@
 // and the points checked), so journals, shards, merges and regression gates all match runs by key.
 // The seed feeds both the scene generator and the heuristic, as in `bspbench build --seed`.
 //
-// Four kinds of job: a drawing job builds one scene's tree and measures it (run_job.h); a merge job
+// Five kinds of job: a drawing job builds one scene's tree and measures it (run_job.h); a merge job
 // (`op` set) builds the two operands of a solid pair (solid_pairs.h) as solid trees and merges them
 // by a set operation (run_merge_job.h); an animate job (`animate` set) keeps an animated scene's
 // tree by an update strategy over its frames, and an occlude job (`occlude`) culls a scene's tree
-// by beam tracing from the metric views (run_dynamic_jobs.h).
+// by beam tracing from the metric views (run_dynamic_jobs.h); a Doom job (`doom` set) builds one
+// map's nodes with one of our heuristics or an external builder, or reads the shipped ones
+// (doom_job.h, run_doom_job.h).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -21,6 +23,7 @@
 #include "common/params.h"
 #include "solid/merge.h"
 #include "solid_pairs.h"
+#include "sweep/doom_run.h"
 #include "sweep/suite.h"
 #include "tree/tree.h"
 
@@ -38,7 +41,15 @@ struct AnimateParams {
   std::uint32_t drift_every = 0;  // frames also built fresh: every N-th and the last; 0 none
 };
 
-enum class JobKind : std::uint8_t { Draw, Merge, Animate, Occlude };
+// A Doom job's map and who builds its nodes; the job's `heuristic` is the builder's label (a
+// heuristic label of the DoomBlock, the external builder's name, or "shipped").
+struct DoomParams {
+  std::string iwad;  // file name in the Doom data directory
+  std::string map;
+  DoomBuilder::Kind builder = DoomBuilder::Kind::Heuristic;
+};
+
+enum class JobKind : std::uint8_t { Draw, Merge, Animate, Occlude, Doom };
 
 struct Job {
   std::string scene;
@@ -54,11 +65,17 @@ struct Job {
   std::string key;  // 16 hex digits, see the header comment
   std::optional<AnimateParams> animate = std::nullopt;  // animate jobs
   bool occlude = false;  // occlude jobs: validation_views is the number of metric views
+  // Doom jobs: validation_views is the order check's eyes; seed and views are 0 but for our heuristics.
+  std::optional<DoomParams> doom = std::nullopt;
   JobKind kind() const {
-    return op ? JobKind::Merge : animate ? JobKind::Animate : occlude ? JobKind::Occlude : JobKind::Draw;
+    return op        ? JobKind::Merge
+           : animate ? JobKind::Animate
+           : occlude ? JobKind::Occlude
+           : doom    ? JobKind::Doom
+                     : JobKind::Draw;
   }
 };
-std::string_view job_kind_name(JobKind kind);  // draw, merge, animate, occlude
+std::string_view job_kind_name(JobKind kind);  // draw, merge, animate, occlude, doom
 
 // A suite's heuristic entry: a registered name, "NAME", or a name with parameters,
 // "NAME:k=v,k=v" (e.g. "weighted:candidates=0", the exhaustive variant). The whole text labels the
@@ -91,7 +108,8 @@ std::string definition_hash(const std::string& suite_name, const std::vector<Job
 // validation_views}: the identity
 // printed in reports and regression tables, with the `bspbench build` command that rebuilds the tree.
 // A merge job's adds kind "merge", operation, points and operands (each scene with its resolved
-// parameters), and its command is the `bspbench merge` that repeats the run.
+// parameters), and its command is the `bspbench merge` that repeats the run. A Doom job's is
+// doom_identity (doom_job.h).
 nlohmann::json job_identity(const Job& job);
 
 // A merge job's two operands (its pair's, for its size and seed).

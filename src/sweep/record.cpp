@@ -45,6 +45,14 @@ constexpr TimingField kTimingFields[] = {
     {"occlude_cpu_seconds", TimingKind::OccludeSummary, "the median of occlude_cpu_samples, divided by the views"},
     {"occlude_cpu_runs", TimingKind::OccludeCount, "cullings of every view timed: depends on the machine's speed"},
     {"occluder_setup_cpu_seconds", TimingKind::Cpu, "thread CPU seconds of the subtree boxes (once per tree)"},
+    {"doom_cpu_samples", TimingKind::DoomSamples,
+     "thread CPU seconds per build of a Doom map's nodes (leafy tree and vanilla lumps), one per timed batch of at "
+     "least 2 ms (Doom runs of our heuristics: run_doom_job.h)"},
+    {"doom_cpu_seconds", TimingKind::DoomSummary, "the median of doom_cpu_samples"},
+    {"doom_cpu_runs", TimingKind::DoomCount, "builds timed for the samples: depends on the machine's speed"},
+    {"builder_cpu_samples", TimingKind::BuilderSamples,
+     "an external node builder's CPU seconds (user + system of its process) in each of 5 runs; not gated"},
+    {"builder_cpu_seconds", TimingKind::Cpu, "the median of builder_cpu_samples"},
 };
 
 }  // namespace
@@ -72,6 +80,10 @@ void split_timings(nlohmann::json& from, nlohmann::json& timings, const std::str
       ++it;
     }
   }
+}
+
+bool judged_for_violations(const nlohmann::json& id) {
+  return !id.is_object() || id.value("kind", "") != "doom" || id.value("builder_kind", "") == "heuristic";
 }
 
 nlohmann::json deterministic_view(const nlohmann::json& report) {

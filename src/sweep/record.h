@@ -2,14 +2,15 @@
 // The layout of a run record, and which of its numbers are timings.
 //
 // A run record (analysis/SCHEMA.md) is {key, id, metrics, invariants, validation, ray_shooting,
-// timings, calibration_seconds}. The timing fields are declared in ONE place, timing_fields():
-// split_timings() moves exactly those out of the metrics and validation objects into "timings",
-// and the regression gate gates exactly the ones declared as build samples (drawing runs), merge
-// samples (merge runs), update samples (animate runs) and occlude samples (occlude runs). Everything else in a
-// record is a deterministic function of the job — identical on any machine, thread count and
-// shard — and compared exactly by the gate. A field that is not declared stays where it is and is
-// compared exactly, whatever its name: renaming a timing without declaring it makes the gate fail
-// loudly instead of silently moving the field between the two comparisons.
+// timings, calibration_seconds}, and a Doom run's `error` when its external builder failed. The
+// timing fields are declared in ONE place, timing_fields(): split_timings() moves exactly those out
+// of the metrics and validation objects into "timings", and the regression gate gates exactly the
+// ones declared as build samples (drawing runs), merge samples (merge runs), update samples
+// (animate runs), occlude samples (occlude runs) and Doom samples (Doom runs of our heuristics).
+// Everything else in a record is a deterministic function of the job — identical on any machine,
+// thread count and shard — and compared exactly by the gate. A field that is not declared stays
+// where it is and is compared exactly, whatever its name: renaming a timing without declaring it
+// makes the gate fail loudly instead of silently moving the field between the two comparisons.
 #include <span>
 #include <string>
 #include <string_view>
@@ -33,6 +34,10 @@ enum class TimingKind {
   OccludeSamples,  // thread CPU seconds per culling of every view, one per timed batch: gated for occlude runs
   OccludeSummary,  // the median of the occlude samples, per view
   OccludeCount,    // cullings of every view timed for the samples
+  DoomSamples,     // thread CPU seconds per build of a Doom map's nodes by our heuristic, one per timed batch: gated
+  DoomSummary,     // the median of the Doom samples
+  DoomCount,       // builds timed for the Doom samples
+  BuilderSamples,  // an external node builder's CPU seconds per run: reported, not gated (not our code)
 };
 
 struct TimingField {
@@ -45,12 +50,17 @@ struct TimingField {
 std::span<const TimingField> timing_fields();
 // nullptr when `name` is not a declared timing field.
 const TimingField* find_timing_field(std::string_view name);
-// The declared field of this kind (there is one each of the Build, Merge, Update and Occlude kinds).
+// The declared field of this kind (there is one each of the Build, Merge, Update, Occlude and Doom kinds).
 std::string_view timing_field_name(TimingKind kind);
 
 // Moves the fields of the flat object `from` whose prefixed names are declared timing fields into
 // `timings`, under their prefixed names.
 void split_timings(nlohmann::json& from, nlohmann::json& timings, const std::string& prefix);
+
+// Whether the run's violations are ours to answer for: false only for a Doom run of nodes made by
+// others (an external builder or the WAD's shipped nodes), whose violations are facts about them,
+// reported but never failed. `id` is the run's identity.
+bool judged_for_violations(const nlohmann::json& id);
 
 // The report without anything that depends on when, where or how fast it ran: shard sections,
 // environments, calibrations and timings (the keys "shards", "timings", "timing_growth",

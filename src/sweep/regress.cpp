@@ -23,26 +23,28 @@ std::string number_text(double v) {
 
 namespace {
 
-// Sections of a run record compared exactly (record.h).
-constexpr const char* kDeterministicSections[] = {"id", "metrics", "invariants", "validation", "ray_shooting"};
+// Sections of a run record compared exactly (record.h); "error" is a Doom run's failed external builder.
+constexpr const char* kDeterministicSections[] = {"id", "metrics", "invariants", "validation", "ray_shooting", "error"};
 // Counts in a current run that must be zero: section, field.
 constexpr std::pair<const char*, const char*> kMustBeZero[] = {
     {"invariants", "violations"}, {"validation", "violations"}, {"ray_shooting", "mismatches"}};
 
 // The timing group of a run (regress.h): a merge run's shape is its operation, an animate run's its
-// update strategy, an occlude run's "occlude".
+// update strategy, an occlude run's "occlude", a Doom run's "doom" (its scene is the IWAD: maps pool).
 std::string group_label(const nlohmann::json& id) {
   const std::string kind = id.value("kind", "draw");
   const std::string shape = kind == "merge"     ? id.value("operation", "?")
                             : kind == "animate" ? id.value("strategy", "?")
                             : kind == "occlude" ? "occlude"
+                            : kind == "doom"    ? "doom"
                                                 : id.value("shape", "?");
   return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + shape;
 }
 
 std::string run_label(const nlohmann::json& id) {
-  return group_label(id) + " n=" + id.value("n", nlohmann::json()).dump() +
-         " seed=" + id.value("seed", nlohmann::json()).dump();
+  const std::string size =
+      id.value("kind", "") == "doom" ? id.value("map", "?") : "n=" + id.value("n", nlohmann::json()).dump();
+  return group_label(id) + " " + size + " seed=" + id.value("seed", nlohmann::json()).dump();
 }
 
 // A section of a run, or null when the run has none.
@@ -91,6 +93,7 @@ struct Comparer {
   }
 
   void violations(const nlohmann::json& current) {
+    if (!judged_for_violations(section_of(current, "id"))) return;
     for (const auto& [section, field] : kMustBeZero) {
       const auto& s = section_of(current, section);
       if (s.is_object() && s.value(field, std::uint64_t{0}) > 0)
@@ -100,12 +103,14 @@ struct Comparer {
 };
 
 // The gated samples of a run: a drawing run's builds, a merge run's merges, an animate run's
-// updates, an occlude run's cullings.
+// updates, an occlude run's cullings, a Doom run's builds by our heuristic (an external builder's
+// runs are not ours to gate, and the shipped nodes are not timed).
 std::string gated_field(const nlohmann::json& run) {
   const std::string kind = section_of(run, "id").value("kind", "");
   const TimingKind samples = kind == "merge"     ? TimingKind::MergeSamples
                              : kind == "animate" ? TimingKind::UpdateSamples
                              : kind == "occlude" ? TimingKind::OccludeSamples
+                             : kind == "doom"    ? TimingKind::DoomSamples
                                                  : TimingKind::BuildSamples;
   return std::string(timing_field_name(samples));
 }

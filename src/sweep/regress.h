@@ -6,24 +6,27 @@
 // strings and booleans exactly; non-integer numbers (expected costs, mean depths) within
 // kFloatRelative, because a sum's last bits may differ between compilers or library versions even
 // though the tree is the same. Every current run must also have zero invariant violations, zero
-// validation violations and zero ray-shooting mismatches, and the current report no failed jobs. A
-// baseline run missing from the current report is a regression; a run or field only the current
-// report has is listed as new, not a regression.
+// validation violations and zero ray-shooting mismatches (but a Doom run of nodes made by others:
+// their violations are facts about them, judged_for_violations in record.h), and the current report
+// no failed jobs. A baseline run missing from the current report is a regression; a run or field
+// only the current report has is listed as new, not a regression.
 //
 // Build times are judged per group (scene x heuristic x shape, pooling sizes and seeds), never per
 // run against a fixed factor. Each run holds kBuildSamples thread-CPU samples per build
 // (run_job.h); a merge run holds as many per merge (run_merge_job.h), grouped by pair x heuristic
-// x operation and judged the same way. Every sample is divided by its run's calibration kernel time (calibration.h), so a
-// slower or faster machine cancels out, and then by the median calibrated baseline sample of the
-// same job, so a group's sizes and seeds share one scale: baseline values scatter around 1 and a
-// job k times slower gives values around k. The group's pooled baseline and current values are
-// compared with the two-sided Mann–Whitney U test (metrics/statistics.h), as Google Benchmark's
-// compare.py compares repetitions. The slowdown is the ratio of the pooled medians (current over
-// baseline). A group FAILS only when it is both significant (p < alpha) and slowed by at least
-// time_tolerance; a significant speed-up by the same factor is listed as a note, since faster code
-// is not a regression but may show skipped work. Significance alone is not enough: two sweeps of
-// the same code differ by a few percent (caches shared with other processes), which thirty
-// samples per group make "significant"; the tolerance says how much slower matters.
+// x operation and judged the same way, and a Doom run of our heuristic as many per build of the
+// map's nodes, grouped by IWAD x heuristic label (maps pooled). Every sample is divided by its
+// run's calibration kernel time (calibration.h), so a slower or faster machine cancels out, and
+// then by the median calibrated baseline sample of the same job, so a group's sizes and seeds share
+// one scale: baseline values scatter around 1 and a job k times slower gives values around k. The
+// group's pooled baseline and current values are compared with the two-sided Mann–Whitney U test
+// (metrics/statistics.h), as Google Benchmark's compare.py compares repetitions. The slowdown is
+// the ratio of the pooled medians (current over baseline). A group FAILS only when it is both
+// significant (p < alpha) and slowed by at least time_tolerance; a significant speed-up by the same
+// factor is listed as a note, since faster code is not a regression but may show skipped work.
+// Significance alone is not enough: two sweeps of the same code differ by a few percent (caches
+// shared with other processes), which thirty samples per group make "significant"; the tolerance
+// says how much slower matters.
 //
 // Wall times and the other CPU times (metrics) are reported but not gated: on a shared machine the
 // wall time measures the other users as much as the code, and the metrics' cost is not the

@@ -7,6 +7,7 @@
 #include "common/errors.h"
 #include "io/atomic_file.h"
 #include "sweep/aggregate.h"
+#include "sweep/record.h"
 
 namespace bsp::sweep {
 
@@ -17,10 +18,14 @@ void sort_by_key(nlohmann::json& records) {
             [](const nlohmann::json& a, const nlohmann::json& b) { return a["key"] < b["key"]; });
 }
 
-std::uint64_t sum_counts(const nlohmann::json& runs, const char* section, const char* field = "violations") {
+// The count summed over the runs whose violations are ours (`judged`), or over the others.
+std::uint64_t sum_counts(const nlohmann::json& runs, const char* section, const char* field = "violations",
+                         bool judged = true) {
   std::uint64_t total = 0;
   for (const auto& r : runs)
-    if (r.contains(section) && r[section].is_object()) total += r[section].value(field, std::uint64_t{0});
+    if (r.contains(section) && r[section].is_object() &&
+        judged_for_violations(r.value("id", nlohmann::json::object())) == judged)
+      total += r[section].value(field, std::uint64_t{0});
   return total;
 }
 
@@ -33,6 +38,7 @@ nlohmann::json summary(const nlohmann::json& suite, const nlohmann::json& shards
           {"invariant_violations", sum_counts(runs, "invariants")},
           {"validation_violations", sum_counts(runs, "validation")},
           {"ray_shoot_mismatches", sum_counts(runs, "ray_shooting", "mismatches")},
+          {"others_violations", sum_counts(runs, "invariants", "violations", false)},
           {"complete", runs.size() + failures.size() == assigned && assigned == suite["jobs"].get<std::uint64_t>()}};
 }
 
@@ -60,11 +66,13 @@ bool has_labels(const nlohmann::json& id, bool optional) {
   return true;
 }
 
-// A drawing or occlude run, an animate run with its strategy and moving count, or a merge run with
-// its operation and two operands.
+// A drawing or occlude run, an animate run with its strategy and moving count, a merge run with
+// its operation and two operands, or a Doom run with its map and builder kind.
 bool has_kind(const nlohmann::json& id) {
   if (!has(id, "kind", &nlohmann::json::is_string)) return false;
   if (id["kind"] == "draw" || id["kind"] == "occlude") return true;
+  if (id["kind"] == "doom")
+    return has(id, "map", &nlohmann::json::is_string) && has(id, "builder_kind", &nlohmann::json::is_string);
   if (id["kind"] == "animate")
     return has(id, "strategy", &nlohmann::json::is_string) && has(id, "moving", &nlohmann::json::is_number_unsigned) &&
            has(id, "speed", &nlohmann::json::is_number);
@@ -105,8 +113,8 @@ void check_layout(const nlohmann::json& report, const std::string& path) {
   for (const auto& r : report["runs"])
     if (!is_run(r))
       bad("a run record lacks key, id (kind, scene, heuristic, shape, n, n_polygons, scene_params; a merge run's "
-          "operation and two operands; an animate run's strategy, moving and speed), metrics, invariants, validation, timings or calibration_seconds, or one has "
-          "the wrong type");
+          "operation and two operands; an animate run's strategy, moving and speed; a Doom run's map and "
+          "builder_kind), metrics, invariants, validation, timings or calibration_seconds, or one has the wrong type");
   for (const auto& f : report["failures"])
     if (!is_failure(f)) bad("a failure record lacks key or id, or one has the wrong type");
 }

@@ -12,7 +12,7 @@ namespace bsp::sweep {
 
 inline constexpr std::string_view kReportSchema = "bspbench-report";
 // Bump on any change a reader must know about; readers reject other versions.
-inline constexpr int kReportVersion = 4;
+inline constexpr int kReportVersion = 5;
 
 // `suite`: {name, definition_hash, jobs}. Sorts runs and failures by key and adds aggregates
 // (aggregate.h) and the summary.

@@ -15,6 +15,7 @@
 #include "split/registry.h"
 #include "sweep/calibration.h"
 #include "sweep/record.h"
+#include "sweep/run_doom_job.h"
 #include "sweep/run_dynamic_jobs.h"
 #include "sweep/run_merge_job.h"
 #include "tree/build.h"
@@ -131,6 +132,7 @@ nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& pla
   if (job.op) return run_merge_job(job, plant);
   if (job.animate) return run_animate_job(job);
   if (job.occlude) return run_occlude_job(job, plant);
+  if (job.doom) return run_doom_job(job, plant);
   const auto start = std::chrono::steady_clock::now();
   Scene scene = make_scene(job.scene, job.scene_params);
   check_scene(scene, "scene " + scene.name);

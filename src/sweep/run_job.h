@@ -52,7 +52,7 @@ TimedBatches time_batches(const std::function<void()>& work, double plant = 1.0)
 
 // Throws what the pieces throw (UsageError for a bad name or parameter; anything else is a bug the
 // runner reports as a failed job). A merge job (job.op set) runs run_merge_job.h, animate and occlude
-// jobs run_dynamic_jobs.h.
+// jobs run_dynamic_jobs.h, Doom jobs run_doom_job.h.
 nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& plant = {});
 
 }  // namespace bsp::sweep

@@ -55,6 +55,12 @@ OccludeBlock occlusions(std::vector<std::uint64_t> sizes, std::vector<std::strin
   return {{"architecture", "city", "terrain"}, std::move(sizes), std::move(heuristics), std::move(seeds), views};
 }
 
+// Doom maps of one IWAD: every registered heuristic and Doom preset, one seed, beside `builders`.
+DoomBlock doom_maps(std::vector<std::string> iwads, std::vector<std::string> maps, std::vector<std::string> builders,
+                    std::uint32_t views) {
+  return {std::move(iwads), std::move(maps), {}, std::move(builders), {1}, views};
+}
+
 Suite smoke() {
   return {"smoke",
           "9 s on 2 shared cores (458 runs): every scene and heuristic at two tiny sizes, one view; merges of "
@@ -77,13 +83,15 @@ Suite smoke() {
 }
 
 // CI's gate, so everything that can break is in it: strict trees at three sizes; coarse leaves and
-// the incremental build (both shapes) at smaller sizes, which keeps them cheap.
+// the incremental build (both shapes) at smaller sizes, which keeps them cheap; two Doom maps, so our
+// nodes are proved and their build times gated beside ZDBSP's.
 Suite quick() {
   return {"quick",
-          "1 min 46 s on 2 shared cores (1,368 runs): every scene and heuristic, strict at 3 sizes to 10^3 and coarse "
+          "2 min 15 s on 2 shared cores (1,394 runs): every scene and heuristic, strict at 3 sizes to 10^3 and coarse "
           "at 300, the exhaustive scorers at 300, incremental at 100 and 300, 2 seeds, 2 views; merges of spheres and "
           "hollow boxes at 100 and 300; every update strategy and occlusion culling at 300 (occlusion also 10^3); "
-          "CI gates on it",
+          "freedoom2's MAP01 and MAP02 by every heuristic and Doom preset beside ZDBSP and the shipped nodes; CI "
+          "gates on it",
           {{{}, {}, {100, 300, 1000}, superlinear({30, 60, 120}, {100, 200, 400}), {1, 2}, {Shape::Strict}, {2, 0, 2}},
            {{}, {}, {300}, superlinear({60}, {200}), {1, 2}, {Shape::Coarse}, {2, 0, 2}},
            {{}, kExhaustive, {300}, superlinear({60}, {200}), {1, 2}, {Shape::Strict}, {2, 0, 2}},
@@ -91,7 +99,8 @@ Suite quick() {
             true}},
           {few_merges({100, 300}, {1, 2}, 5000)},
           {few_animations({"crystal", "naylor"})},
-          {occlusions({300, 1000}, {}, {1}, 2)}};
+          {occlusions({300, 1000}, {}, {1}, 2)},
+          {doom_maps({"freedoom2.wad"}, {"MAP01", "MAP02"}, {"zdbsp"}, 2)}};
 }
 
 // The research question of dynamic scenes: each strategy against rebuild as the moving share of the
@@ -120,14 +129,16 @@ std::vector<SceneSizes> default_sizes() {
 
 Suite default_suite() {
   return {"default",
-          "18 min on 2 shared cores (3,708 runs): every scene and heuristic and the exhaustive scorers, 4 sizes to "
+          "19 min on 2 shared cores (3,764 runs): every scene and heuristic and the exhaustive scorers, 4 sizes to "
           "3*10^3 (near-degenerate to 10^3), 3 seeds, 2 views (1 past 10^3); merges of every solid pair to 10^3; every "
-          "update strategy and occlusion culling at 10^3 (occlusion also 3*10^3)",
+          "update strategy and occlusion culling at 10^3 (occlusion also 3*10^3); freedoom2's MAP01 to MAP04 by every "
+          "heuristic and Doom preset beside ZDBSP, glBSP and the shipped nodes",
           {{{}, {}, {100, 300, 1000, 3000}, default_sizes(), {1, 2, 3}, {Shape::Strict}, {2, 1000, 1}},
            {{}, kExhaustive, {100, 300, 1000, 3000}, default_sizes(), {1, 2, 3}, {Shape::Strict}, {2, 1000, 1}}},
           {{{}, {}, {}, {100, 300, 1000}, {1, 2, 3}, 10000}},
           {dynamic_block({"city", "architecture"}, {1000}, {1, 4, 16}, {0.002, 0.008, 0.032}, {1, 2}, 60)},
-          {occlusions({1000, 3000}, {}, {1, 2, 3}, 4)}};
+          {occlusions({1000, 3000}, {}, {1, 2, 3}, 4)},
+          {doom_maps({"freedoom2.wad"}, {"MAP01", "MAP02", "MAP03", "MAP04"}, {"zdbsp", "glbsp"}, 2)}};
 }
 
 // Set operations only: every solid pair, heuristic and operation at 300 and 10^3 polygons per
@@ -168,6 +179,19 @@ Suite occlusion_suite() {
           {occlusions({1000, 3000, 10000}, {}, {1, 2, 3}, 8)}};
 }
 
+// Doom maps only: all 68 maps of both Freedoom IWADs, every heuristic and Doom preset against ZDBSP,
+// glBSP and the shipped nodes (README, "Doom maps").
+Suite doom_suite() {
+  return {"doom",
+          "27 min on 2 shared cores (952 runs): all 68 maps of freedoom1 and freedoom2, every heuristic and both "
+          "Doom presets (seed 1, 4 views) beside ZDBSP, glBSP and the shipped nodes",
+          {},
+          {},
+          {},
+          {},
+          {doom_maps({"freedoom1.wad", "freedoom2.wad"}, {}, {"zdbsp", "glbsp"}, 4)}};
+}
+
 // The large sizes run every heuristic at its defaults (sampled candidates keep each build near
 // n log n) on the scenes whose fragments stay near linear as n grows, except halving: its free
 // planes cut sphere-field's spheres into 13 fragments per polygon at 10^5 (1.3 M fragments,
@@ -205,7 +229,7 @@ Suite segments_suite() {
 
 const std::vector<Suite>& suites() {
   static const std::vector<Suite> all = {smoke(), quick(), default_suite(), merge_suite(), dynamic_suite(),
-                                         occlusion_suite(), segments_suite(), full()};
+                                         occlusion_suite(), segments_suite(), doom_suite(), full()};
   return all;
 }
 

@@ -1,10 +1,10 @@
 #pragma once
-// Sweep suites: named sets of runs (scene x size x heuristic x shape x seed, and solid pair x size x
-// heuristic x set operation x seed for merges). A suite names no heuristic and, in its main block,
-// no scene: it takes every entry of the registries, so a heuristic or generator added there is
-// swept without further wiring. Sizes are the generators' `n`
-// parameter; a generator without one runs once at its defaults, and a size outside a generator's
-// `n` range is skipped for it.
+// Sweep suites: named sets of runs (scene x size x heuristic x shape x seed, solid pair x size x
+// heuristic x set operation x seed for merges, Doom map x heuristic x seed beside node builders).
+// A suite names no heuristic and, in its main block, no scene: it takes every entry of the
+// registries, so a heuristic or generator added there is swept without further wiring. Sizes are
+// the generators' `n` parameter; a generator without one runs once at its defaults, and a size
+// outside a generator's `n` range is skipped for it.
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -88,6 +88,21 @@ struct OccludeBlock {
   std::uint32_t views = 4;
 };
 
+// Doom maps (sweep/doom_job.h): our leafy trees beside the external node builders and the nodes the
+// WAD shipped with, on the same maps, measured and proved alike (sweep/doom_run.h). One job per
+// IWAD, map, heuristic and seed; one per IWAD, map and external builder, and one for the shipped
+// nodes, whatever the seeds (they consult none).
+struct DoomBlock {
+  std::vector<std::string> iwads;  // file names in the Doom data directory (doom_data_dir())
+  std::vector<std::string> maps;   // empty: every map of each IWAD
+  // Labels: registered names, NAME:k=v,k=v variants as in the other blocks, or Doom preset names
+  // (doom_presets()); empty: every registered heuristic and every preset.
+  std::vector<std::string> heuristics;
+  std::vector<std::string> builders;  // external node builders (sweep/node_builders.h): zdbsp, glbsp
+  std::vector<std::uint64_t> seeds;
+  std::uint32_t views = 4;  // eyes of the Embree order check of our trees
+};
+
 struct Suite {
   std::string name;
   std::string summary;  // one line, with the measured run time
@@ -95,6 +110,7 @@ struct Suite {
   std::vector<MergeBlock> merges = {};
   std::vector<AnimateBlock> animations = {};
   std::vector<OccludeBlock> occlusions = {};
+  std::vector<DoomBlock> doom = {};
 };
 
 const std::vector<Suite>& suites();
