@@ -83,12 +83,13 @@ Suite smoke() {
 }
 
 // CI's gate, so everything that can break is in it: strict trees at three sizes; coarse leaves and
-// the incremental build (both shapes) at smaller sizes, which keeps them cheap; two Doom maps, so our
-// nodes are proved and their build times gated beside ZDBSP's.
+// the incremental build (both shapes) at smaller sizes, which keeps them cheap; 2D segments, strict
+// and leafy; two Doom maps, so our nodes are proved and their build times gated beside ZDBSP's.
 Suite quick() {
   return {"quick",
-          "2 min 15 s on 2 shared cores (1,394 runs): every scene and heuristic, strict at 3 sizes to 10^3 and coarse "
-          "at 300, the exhaustive scorers at 300, incremental at 100 and 300, 2 seeds, 2 views; merges of spheres and "
+          "49 s on 2 cores beside a one-thread sweep (1,466 runs): every scene and heuristic, strict at 3 sizes to 10^3 and coarse "
+          "at 300, the exhaustive scorers at 300, incremental at 100 and 300, 2 seeds, 2 views; random-segments (2D) "
+          "at 300 and 10^3, strict and leafy; merges of spheres and "
           "hollow boxes at 100 and 300; every update strategy and occlusion culling at 300 (occlusion also 10^3); "
           "freedoom2's MAP01 and MAP02 by every heuristic and Doom preset beside ZDBSP and the shipped nodes; CI "
           "gates on it",
@@ -96,7 +97,8 @@ Suite quick() {
            {{}, {}, {300}, superlinear({60}, {200}), {1, 2}, {Shape::Coarse}, {2, 0, 2}},
            {{}, kExhaustive, {300}, superlinear({60}, {200}), {1, 2}, {Shape::Strict}, {2, 0, 2}},
            {{}, {}, {100, 300}, superlinear({30, 60}, {100, 200}), {1, 2}, {Shape::Strict, Shape::Coarse}, {2, 0, 2},
-            true}},
+            true},
+           {{"random-segments"}, {}, {300, 1000}, {}, {1, 2}, {Shape::Strict, Shape::Leafy}, {2, 0, 2}}},
           {few_merges({100, 300}, {1, 2}, 5000)},
           {few_animations({"crystal", "naylor"})},
           {occlusions({300, 1000}, {}, {1}, 2)},
