@@ -916,7 +916,7 @@ def plot_doom(totals, path):
     """Splits against mean max depth and against CPU seconds, a point per builder, the front ringed."""
     rows = math.ceil(len(totals) / 5)
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5 + 0.25 * rows))
-    colours = plt.get_cmap("tab10").colors
+    colours = plt.get_cmap("tab20").colors  # 14 builders: distinct colours
     for ax, field, title in ((axes[0], "max_depth", "mean max depth over maps"),
                              (axes[1], "cpu", "CPU seconds, all maps")):
         pts = [(t, t["splits"], t[field]) for t in totals if t[field] is not None and t["built"]]
