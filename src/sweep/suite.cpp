@@ -219,8 +219,8 @@ Suite full() {
 // and 10^4.
 Suite segments_suite() {
   return {"segments",
-          "2D: the random autopartition of random-segments from 10^2 to 10^6, 5 seeds; every heuristic and shape "
-          "at 10^3 and 10^4, 3 seeds",
+          "10 min 36 s on 2 cores (181 runs), 2D: the random autopartition of random-segments from 10^2 to 10^6, 5 "
+          "seeds; every heuristic and shape at 10^3 and 10^4, 3 seeds",
           {{{"random-segments"}, {"random"}, {100, 1000, 10000, 100000, 1000000}, {}, {1, 2, 3, 4, 5},
             {Shape::Strict}, {2, 10000, 0}},
            {{"random-segments"}, {}, {1000, 10000}, {}, {1, 2, 3}, {Shape::Strict, Shape::Coarse, Shape::Leafy},
