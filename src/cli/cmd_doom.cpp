@@ -4,7 +4,6 @@
 // our outputs fails a check.
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -15,6 +14,7 @@
 #include "common/errors.h"
 #include "io/wad.h"
 #include "split/registry.h"
+#include "sweep/doom_job.h"
 #include "sweep/doom_run.h"
 #include "sweep/node_builders.h"
 
@@ -76,8 +76,7 @@ std::vector<std::string> maps_from(const Wad& wad, const std::string& text, cons
 // installs them (or in BSPBENCH_DOOM_DIR), as Doom ports search DOOMWADDIR: --iwad freedoom2.wad.
 std::string resolve_wad(const std::string& name) {
   if (name.find('/') != std::string::npos || std::filesystem::exists(name)) return name;
-  const char* dir = std::getenv("BSPBENCH_DOOM_DIR");
-  const auto installed = std::filesystem::path(dir ? dir : "/usr/share/games/doom") / name;
+  const auto installed = std::filesystem::path(sweep::doom_data_dir()) / name;
   return std::filesystem::exists(installed) ? installed.string() : name;
 }
 
