@@ -43,10 +43,11 @@ class Cli : public ::testing::Test {
   // `order` and `validate` on a bad input file: exit 2, one stderr line naming the file and
   // containing `problem`, nothing written.
   void expect_input_error(const fs::path& file, const std::string& problem) const {
-    for (const std::string command : {"validate", "order"}) {
+    for (const std::string command : {"validate", "order", "compare"}) {
       SCOPED_TRACE(command + " " + file.string());
       const std::string out = command == "order" ? " --eye 0.5,0.5,4 --out " + (dir_ / "out" / "run").string() : "";
-      const CliResult r = run(command + " --input " + file.string() + " --heuristic first" + out);
+      const std::string heuristic = command == "compare" ? " --heuristics first" : " --heuristic first";
+      const CliResult r = run(command + " --input " + file.string() + heuristic + out);
       EXPECT_EQ(r.code, 2);
       EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
       EXPECT_NE(r.err.find(file.string()), std::string::npos) << r.err;
@@ -70,6 +71,28 @@ class Cli : public ::testing::Test {
 };
 
 }  // namespace
+
+// A user's mesh through compare: read once, every seed feeding only the heuristics, each checked.
+TEST_F(Cli, CompareTakesAMeshFileAndRunsEverySeedOnIt) {
+  const fs::path mesh = write("box.obj",
+                              "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                              "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+                              "v 0.2 0.2 0.5\nv 0.8 0.3 0.5\nv 0.5 0.9 0.6\nf 9 10 11\n");
+  const CliResult r = run("compare --input " + mesh.string() + " --heuristics first,crystal --seeds 3 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["scene"], mesh.string());
+  ASSERT_EQ(j["scenes"].size(), 1u) << "a file is one scene whatever the seed";
+  EXPECT_TRUE(j["scenes"][0]["seed"].is_null());
+  ASSERT_EQ(j["heuristics"].size(), 2u);
+  for (const auto& h : j["heuristics"]) {
+    EXPECT_EQ(h["runs"].size(), 3u);
+    EXPECT_EQ(h["validation"]["failures"], 0u);
+    EXPECT_EQ(h["metrics"]["n_input"]["mean"], 7.0);
+  }
+  expect_usage_error("compare --input " + mesh.string() + " --n 10 --heuristics first", "--input");
+  expect_usage_error("compare --input " + mesh.string() + " --scene city --heuristics first", "either --scene");
+}
 
 TEST_F(Cli, MissingFileIsNamed) { expect_input_error(dir_ / "missing.obj", "no such file"); }
 

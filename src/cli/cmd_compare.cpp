@@ -7,16 +7,19 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "catalog.h"
+#include "mesh_scenes.h"
 #include "cli/commands.h"
 #include "cli/metrics_args.h"
 #include "cli/run_args.h"
 #include "common/errors.h"
+#include "io/mesh_reader.h"
 #include "metrics/statistics.h"
 #include "metrics/tree_metrics.h"
 #include "split/registry.h"
@@ -35,7 +38,8 @@ constexpr const char* kTableMetrics[] = {"fragments", "max_depth", "e_point", "e
                                          "culled_nodes_visited"};
 
 struct CompareSpec {
-  std::string scene;
+  std::string scene;                 // a generator, or mesh:NAME
+  std::optional<std::string> input;  // a mesh file instead of `scene`
   ParamAssignments scene_params;  // without the seed
   std::uint64_t seed = 1;
   std::uint64_t seeds = 1;
@@ -59,9 +63,13 @@ std::vector<std::string> heuristic_list(const std::string& text) {
 
 CompareSpec parse(Args& args) {
   CompareSpec s;
-  s.scene = args.required("--scene");
+  s.input = args.option("--input");
+  const auto scene = args.option("--scene");
+  if (s.input.has_value() == scene.has_value()) throw UsageError("give either --scene NAME or --input FILE");
+  s.scene = scene.value_or(*s.input);
   if (const auto n = args.option("--n")) s.scene_params.emplace_back("n", *n);
   for (const auto& kv : args.options("--scene-param")) s.scene_params.push_back(parse_assignment(kv));
+  if (s.input && !s.scene_params.empty()) throw UsageError("--n and --scene-param apply to --scene, not --input");
   for (const auto& [k, v] : s.scene_params)
     if (k == "seed") throw UsageError("give the scene's seed with --seed");
   s.seed = static_cast<std::uint64_t>(args.integer("--seed", 0, 9'000'000'000'000'000LL).value_or(1));
@@ -79,9 +87,18 @@ CompareSpec parse(Args& args) {
   return s;
 }
 
+// A generated scene is made anew for each seed; a mesh (a file or mesh:NAME) has no seed, so it is
+// read once and every seed only feeds the heuristic.
+bool seeded_scene(const CompareSpec& s) { return !s.input && !is_mesh_scene(s.scene); }
+
 Scene scene_for(const CompareSpec& s, std::uint64_t seed) {
+  if (s.input) {
+    Scene scene = read_mesh(*s.input);
+    check_scene(scene, *s.input);
+    return scene;
+  }
   ParamAssignments given = s.scene_params;
-  given.emplace_back("seed", std::to_string(seed));
+  if (seeded_scene(s)) given.emplace_back("seed", std::to_string(seed));
   Scene scene = make_scene(s.scene, given);
   check_scene(scene, "scene " + scene.name);
   return scene;
@@ -138,12 +155,14 @@ nlohmann::json summarize_runs(const std::string& heuristic, const std::vector<Ru
           {"runs", std::move(per_seed)}};
 }
 
-// Each seed makes its own scene: its seed, content hash and bounding box.
+// Each seed of a generated scene makes its own scene: its seed, content hash and bounding box. A
+// mesh is one scene, with no seed.
 nlohmann::json scene_instances(const CompareSpec& s, const std::vector<Scene>& scenes) {
   nlohmann::json out = nlohmann::json::array();
   for (std::uint64_t k = 0; k < scenes.size(); ++k) {
     const nlohmann::json j = scene_json(scenes[k]);
-    out.push_back({{"seed", s.seed + k}, {"scene_hash", j["hash"]}, {"scene_bounds", j["bounds"]}});
+    const nlohmann::json seed = seeded_scene(s) ? nlohmann::json(s.seed + k) : nlohmann::json(nullptr);
+    out.push_back({{"seed", seed}, {"scene_hash", j["hash"]}, {"scene_bounds", j["bounds"]}});
   }
   return out;
 }
@@ -196,13 +215,14 @@ int run(Args& args) {
   const CompareSpec spec = parse(args);
   args.finish();
   std::vector<Scene> scenes;
-  for (std::uint64_t k = 0; k < spec.seeds; ++k) scenes.push_back(scene_for(spec, spec.seed + k));
+  for (std::uint64_t k = 0; k < (seeded_scene(spec) ? spec.seeds : 1); ++k) scenes.push_back(scene_for(spec, spec.seed + k));
   nlohmann::json out = header(spec, scenes);
   out["heuristics"] = nlohmann::json::array();
   std::uint64_t failures = 0;
   for (const auto& h : spec.heuristics) {
     std::vector<Run> runs;
-    for (std::uint64_t k = 0; k < spec.seeds; ++k) runs.push_back(run_once(spec, scenes[k], h, spec.seed + k));
+    for (std::uint64_t k = 0; k < spec.seeds; ++k)
+      runs.push_back(run_once(spec, scenes[seeded_scene(spec) ? k : 0], h, spec.seed + k));
     out["heuristics"].push_back(summarize_runs(h, runs));
     failures += out["heuristics"].back()["validation"]["failures"].get<std::uint64_t>();
   }
@@ -218,14 +238,17 @@ int run(Args& args) {
 
 Command compare_command() {
   static const std::string usage =
-      "--scene NAME [--n N] [--seed S] [--scene-param k=v]... (--heuristics all|NAME[,NAME]... | --incremental "
+      "(--scene NAME [--n N] [--scene-param k=v]... | --input FILE) [--seed S] (--heuristics all|NAME[,NAME]... | "
+      "--incremental "
       "[--order given|shuffled]) [--seeds K] [--shape strict|coarse|leafy] " +
       std::string(kMetricsUsage) + " [--json]";
   static const OptionHelps own = {
       {"--scene NAME", kSceneOptions[0].meaning},
       {"--n N", kSceneOptions[1].meaning},
-      {"--seed S", "seed of the first run; run k uses S + k for the scene and the heuristic (default 1)"},
       {"--scene-param k=v", kSceneOptions[3].meaning},
+      {"--input FILE", "a mesh file (OBJ, OFF, PLY, STL) instead of --scene; like mesh:NAME it is read once and the "
+                       "seeds feed only the heuristics"},
+      {"--seed S", "seed of the first run; run k uses S + k for a generated scene and the heuristic (default 1)"},
       {"--heuristics all|NAME[,NAME]...", "every registered heuristic, or a comma-separated list"},
       {"--seeds K", "runs per heuristic, each with its own seed (default 1)"}};
   return {"compare", usage,
