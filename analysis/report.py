@@ -234,15 +234,39 @@ def growth_table(aggs):
             "<th>nodes exponent</th></tr>" + rows + "</table>")
 
 
+ENVIRONMENT_COLUMNS = (("date_utc", "date (UTC)"), ("git_revision", "revision"), ("build_type", "build"),
+                       ("compiler", "compiler"), ("flags", "flags"), ("cpu_model", "CPU"),
+                       ("hardware_threads", "hardware threads"), ("threads", "threads used"), ("host", "host"))
+SUMMARY_ROWS = (("runs", "runs"), ("failures", "failed jobs"), ("invariant_violations", "invariant violations"),
+                ("validation_violations", "order violations (Embree)"),
+                ("ray_shoot_mismatches", "ray-shooting mismatches"),
+                ("others_violations", "violations in nodes made by external builders or shipped with a WAD"),
+                ("complete", "every job of the suite ran"))
+
+
+def environment_table(report):
+    """One row per shard: where and how it ran, and the calibration its timings are relative to."""
+    head = "".join(f"<th>{label}</th>" for _, label in ENVIRONMENT_COLUMNS)
+    rows = ""
+    for s in report["shards"]:
+        env = s.get("environment", {})
+        cells = "".join(f"<td>{html.escape(str(env.get(key, '—')))}</td>" for key, _ in ENVIRONMENT_COLUMNS)
+        rows += (f"<tr><td>{s['index']}/{s['count']}</td>{cells}"
+                 f"<td>{s.get('calibration', {}).get('seconds', float('nan')):.4g}</td></tr>")
+    return f"<table><tr><th>shard</th>{head}<th>calibration s</th></tr>{rows}</table>"
+
+
+def summary_table(summary):
+    rows = "".join(f"<tr><th style='text-align:left'>{label}</th><td>{html.escape(str(summary[key]))}</td></tr>"
+                   for key, label in SUMMARY_ROWS if key in summary)
+    return f"<table>{rows}</table>"
+
+
 def header(report):
-    env = "".join(
-        f"<li>shard {s['index']}/{s['count']}: {html.escape(json.dumps(s.get('environment', {})))}, calibration "
-        f"{s.get('calibration', {}).get('seconds', float('nan')):.4g} s</li>" for s in report["shards"])
-    summary = html.escape(json.dumps(report.get("summary", {})))
     suite = report["suite"]
     return (f"<h1>bspbench report: suite {html.escape(suite['name'])}</h1>"
-            f"<p>definition {html.escape(suite['definition_hash'])}, {suite['jobs']} jobs; summary {summary}</p>"
-            f"<ul>{env}</ul>"
+            f"<p>definition {html.escape(suite['definition_hash'])}, {suite['jobs']} jobs</p>"
+            f"{summary_table(report.get('summary', {}))}<h3>Environment</h3>{environment_table(report)}"
             "<p>Intervals are 95% Student-t intervals over seeds (± half-width). Growth exponents k fit "
             "y = c·n^k by least squares on log-log axes over every run.</p>")
 

@@ -208,7 +208,7 @@ TEST_F(SweepCli, PlantedSlowdownOfOneHeuristicFailsExactlyItsGroups) {
 TEST_F(SweepCli, ReportRendersTheSegmentBoundAndDoomSections) {
   nlohmann::json runs = nlohmann::json::array();
   const auto segment_run = [&](int n, const std::string& heuristic, const std::string& shape, int seed, int fragments) {
-    runs.push_back({{"key", "s" + std::to_string(runs.size())},
+    runs.push_back({{"key", std::to_string(runs.size())},
                     {"id", {{"kind", "draw"}, {"scene", "random-segments"}, {"n", n}, {"n_polygons", n},
                             {"scene_params", {{"n", n}, {"seed", seed}}}, {"heuristic", heuristic}, {"shape", shape},
                             {"seed", seed}, {"command", "bspbench build --scene random-segments --n " + std::to_string(n)}}},
@@ -229,7 +229,7 @@ TEST_F(SweepCli, ReportRendersTheSegmentBoundAndDoomSections) {
     nlohmann::json timings = nlohmann::json::object();
     if (kind == "heuristic") timings = {{"doom_cpu_samples", {cpu, cpu}}, {"doom_cpu_seconds", cpu}};
     if (kind == "external") timings = {{"builder_cpu_samples", {cpu, cpu, cpu}}};
-    runs.push_back({{"key", "d" + std::to_string(runs.size())},
+    runs.push_back({{"key", std::to_string(runs.size())},
                     {"id", {{"kind", "doom"}, {"scene", "freedoom2.wad"}, {"iwad", "freedoom2.wad"}, {"map", map},
                             {"builder", name}, {"builder_kind", kind}, {"shape", "leafy"}, {"n", 0}, {"n_polygons", 1000},
                             {"scene_params", nlohmann::json::object()},
@@ -266,4 +266,6 @@ TEST_F(SweepCli, ReportRendersTheSegmentBoundAndDoomSections) {
   for (auto it = std::sregex_iterator(page.begin(), page.end(), img); it != std::sregex_iterator(); ++it, ++images)
     EXPECT_TRUE(is_png(dir_ / "html" / (*it)[1].str())) << (*it)[1].str();
   EXPECT_EQ(images, 2u);  // the bound plot, and the Doom Pareto plots (one image)
+  EXPECT_EQ(page.find("{&quot;"), std::string::npos) << "a JSON dump in the page";
+  EXPECT_NE(page.find("<h3>Environment</h3>"), std::string::npos);
 }
