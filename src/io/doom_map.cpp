@@ -263,13 +263,14 @@ DoomMap read_map(const Wad& wad, const std::string& name, const std::string& fil
   if (!found) throw InputError(file + ": no map " + name);
   const std::size_t marker = *found;
   const Origin origin{file, name};
-  lump_records(wad, marker, "THINGS", kThingBytes, origin);
   DoomMap map{name,
               marker,
               decode_vertices(lump_records(wad, marker, "VERTEXES", kVertexBytes, origin)),
               decode_linedefs(lump_records(wad, marker, "LINEDEFS", kLinedefBytes, origin)),
               decode_sidedefs(lump_records(wad, marker, "SIDEDEFS", kSidedefBytes, origin)),
-              decode_sectors(lump_records(wad, marker, "SECTORS", kSectorBytes, origin))};
+              decode_sectors(lump_records(wad, marker, "SECTORS", kSectorBytes, origin)),
+              decode<DoomVertex>(lump_records(wad, marker, "THINGS", kThingBytes, origin), kThingBytes,
+                                 [](const std::uint8_t* p) { return DoomVertex{s16(p), s16(p + 2)}; })};
   check_linedefs(map.linedefs, map.vertices.size(), map.sidedefs.size(), origin);
   for (std::size_t i = 0; i < map.sidedefs.size(); ++i)
     check_index(origin, "SIDEDEFS", "sidedef", i, "sector", map.sidedefs[i].sector, map.sectors.size());

@@ -56,6 +56,7 @@ struct DoomMap {
   std::vector<Linedef> linedefs;
   std::vector<Sidedef> sidedefs;
   std::vector<Sector> sectors;
+  std::vector<DoomVertex> things;  // where the map's things stand (THINGS' x and y)
 };
 
 struct Seg {

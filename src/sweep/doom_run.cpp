@@ -18,16 +18,11 @@ namespace bsp::sweep {
 
 namespace {
 
-constexpr std::size_t kThingBytes = 10;  // x, y, angle, type, flags: int16 each
 // Things stand on integer points, and so do the lines of many walls: an eye in a wall's plane sees it
 // edge-on, where it hides nothing and a ray cast along it meets it anywhere, so no order can be
 // judged there. The eyes are moved off the integer grid by this much, far less than any thing's
 // radius (16 units at least), so they stay where the thing is.
 constexpr double kEyeOffGrid[2] = {0.3125, 0.1875};
-
-std::int16_t int16_at(const std::vector<std::uint8_t>& d, std::size_t at) {
-  return static_cast<std::int16_t>(d[at] | (d[at + 1] << 8));
-}
 
 // Runs `f` with OpenMP limited to one thread, as the external builders run.
 template <class F>
@@ -68,7 +63,7 @@ void run_ours(const Wad& wad, const DoomMap& map, const DoomBuilder& b, const Do
   r.rounding = ours.vanilla.rounding;
   r.stats = doom_tree_stats(map, ours.vanilla.nodes);
   r.check = check_doom_nodes(map, ours.vanilla.nodes);
-  r.order = validate_segment_tree(ours.tree, doom_eyes(wad, map, s.views));
+  r.order = validate_segment_tree(ours.tree, doom_eyes(map, s.views));
   r.ok = r.check.ok() && r.order->ok() && r.mixed_leaves == 0;
   if (!s.out_dir.empty()) write_ours(wad, map, ours.vanilla.nodes, s.out_dir, b.label());
 }
@@ -158,15 +153,10 @@ std::optional<DoomBuilder> doom_preset(const std::string& name) {
   return std::nullopt;
 }
 
-std::vector<Vec3> doom_eyes(const Wad& wad, const DoomMap& map, int views) {
+std::vector<Vec3> doom_eyes(const DoomMap& map, int views) {
   std::vector<Vec3> eyes;
-  for (std::size_t i = map.marker + 1; i < wad.lumps.size() && i <= map.marker + 10; ++i) {
-    if (wad.lumps[i].name != "THINGS") continue;
-    const auto& d = wad.lumps[i].data;
-    for (std::size_t at = 0; at + kThingBytes <= d.size() && eyes.size() < static_cast<std::size_t>(views); at += kThingBytes)
-      eyes.push_back({int16_at(d, at) + kEyeOffGrid[0], int16_at(d, at + 2) + kEyeOffGrid[1], 0.0});
-    break;
-  }
+  for (std::size_t i = 0; i < map.things.size() && eyes.size() < static_cast<std::size_t>(views); ++i)
+    eyes.push_back({map.things[i].x + kEyeOffGrid[0], map.things[i].y + kEyeOffGrid[1], 0.0});
   return eyes;
 }
 

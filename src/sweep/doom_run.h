@@ -71,7 +71,7 @@ struct DoomRun {
 
 // The eyes of the order check: the positions of the map's first `views` things, moved off the
 // integer grid by a fraction of a unit so that no wall is seen edge-on.
-std::vector<Vec3> doom_eyes(const Wad& wad, const DoomMap& map, int views);
+std::vector<Vec3> doom_eyes(const DoomMap& map, int views);
 
 // Our leafy tree of the map's segments (doom_segs(map)) by `builder` (a heuristic) and its vanilla
 // lumps, on one thread: the work whose CPU time run_doom reports for our heuristics, apart so a
