@@ -236,6 +236,8 @@ struct PlyProperty {
   int size = 0;        // bytes of a scalar, or of an item of a list
   int count_size = 0;  // bytes of a list's count; 0 for a scalar
   bool count_signed = false;
+  bool real = false;  // the scalar or item is float or double
+  bool is_signed = false;
 };
 
 struct PlyElement {
@@ -289,6 +291,7 @@ void add_ply_property(const std::string& path, Text& words, std::vector<PlyEleme
   }
   p.size = ply_type_size(type, is_signed);
   if (p.size == 0) return;
+  p.real = is_real(type), p.is_signed = is_signed;
   check_ply_typed_property(path, elements.back(), words.token(), type, list);
   elements.back().properties.push_back(p);
 }
@@ -369,6 +372,45 @@ u64 read_binary_count(std::string_view data, std::size_t at, const PlyProperty& 
                  std::to_string(e.count) + ")");
 }
 
+// Whether an ASCII token is one whole value as CGAL's PLY_read_number::read_ascii reads it: a real
+// through CGAL's iformat (an optional '+', then the run of [0-9.eE+-], which sscanf must start to
+// read), an integer through stream >> (a short for the one-byte types), which fails outside the
+// type's range. One failed read leaves the stream bad and every later value uninitialised, so a
+// list length read after it is garbage (a fuzzer finding: a 4.7 GB allocation for one face).
+bool ply_ascii_value(std::string_view t, bool real, int size, bool is_signed) {
+  if (real) {
+    if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+    if (t.empty() || t.find_first_not_of("0123456789.eE+-") != std::string_view::npos) return false;
+    const std::string run(t);
+    char* stop = nullptr;
+    std::strtod(run.c_str(), &stop);
+    return stop != run.c_str();
+  }
+  const auto v = to_integer(t);
+  if (!v) return false;
+  const int bits = size == 1 ? 16 : 8 * size;
+  const long long top = (1LL << (bits - is_signed)) - 1;
+  return is_signed ? *v >= -top - 1 && *v <= top : *v >= -top && *v <= top;
+}
+
+// A token for an error line: at most 16 characters, anything unprintable as '?'.
+std::string shown(std::string_view t) {
+  std::string s(t.substr(0, 16));
+  for (char& c : s)
+    if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+  return t.size() > 16 ? s + "..." : s;
+}
+
+// The next ASCII value of record `record` of `e`: it must be there and be one whole value.
+void take_ply_ascii_value(const std::string& path, const PlyElement& e, u64 record, Text& text, bool real, int size,
+                          bool is_signed) {
+  const std::string_view token = text.token();
+  if (token.empty()) ply_data_ends(path, e, record);
+  if (!ply_ascii_value(token, real, size, is_signed))
+    fail(path, e.name + " " + std::to_string(record) + " has '" + shown(token) + "', not " +
+                   (real ? std::string("a real") : "a " + std::to_string(size == 1 ? 16 : 8 * size) + "-bit integer"));
+}
+
 // One list's length, checked against the bytes left after it. CGAL sizes the list by the length
 // before it reads the entries, and a length read past the end of the data is garbage, so the data
 // must not end there either.
@@ -378,10 +420,9 @@ void check_ply_list(const std::string& path, const PlyElement& e, u64 record, co
   bool negative = false;
   Text text(data.substr(at));
   if (format == PlyFormat::Ascii) {
-    const std::string_view token = text.token();
-    if (token.empty()) ply_data_ends(path, e, record);
-    const auto n = to_integer(token);
-    if (!n) fail(path, e.name + " " + std::to_string(record) + " has list length '" + std::string(token) + "'");
+    Text probe = text;
+    take_ply_ascii_value(path, e, record, text, false, p.count_size, p.count_signed);
+    const auto n = to_integer(probe.token());
     negative = *n < 0, k = static_cast<u64>(*n);
     at = data.size() - text.left();
   } else {
@@ -398,7 +439,7 @@ void check_ply_list(const std::string& path, const PlyElement& e, u64 record, co
                    (negative ? "negative length" : std::to_string(k) + " entries") + " but only " + bytes(left) +
                    " remain");
   if (format == PlyFormat::Ascii) {
-    for (u64 i = 0; i < k; ++i) text.token();
+    for (u64 i = 0; i < k; ++i) take_ply_ascii_value(path, e, record, text, p.real, p.size, p.is_signed);
     at = data.size() - text.left();
   } else {
     at += *need;
@@ -409,7 +450,7 @@ void skip_ply_scalar(const std::string& path, const PlyElement& e, u64 record, c
                      std::string_view data, std::size_t& at, PlyFormat format) {
   if (format == PlyFormat::Ascii) {
     Text text(data.substr(at));
-    if (text.token().empty()) ply_data_ends(path, e, record);
+    take_ply_ascii_value(path, e, record, text, p.real, p.size, p.is_signed);
     at = data.size() - text.left();
   } else {
     if (data.size() - at < static_cast<std::size_t>(p.size)) ply_data_ends(path, e, record);
