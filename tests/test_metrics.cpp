@@ -100,22 +100,12 @@ Vec3 sphere_direction(Rng& rng) {
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
-std::uint32_t plane_tests_to_locate(const Tree& tree, const Vec3& p) {
-  std::uint32_t tests = 0;
-  for (std::uint32_t n = 0; n != kNull && !tree.nodes[n].is_cell_leaf();) {
-    ++tests;
-    const Node& node = tree.nodes[n];
-    n = tree.planes[node.plane].distance(p) >= 0 ? node.front : node.back;
-  }
-  return tests;
-}
-
 double monte_carlo_e_point(const Tree& tree, const Box& root, int samples) {
   Rng rng(11);
   double sum = 0;
   for (int i = 0; i < samples; ++i) {
     const Vec3 p{rng.uniform(root.lo.x, root.hi.x), rng.uniform(root.lo.y, root.hi.y), rng.uniform(root.lo.z, root.hi.z)};
-    sum += plane_tests_to_locate(tree, p);
+    sum += point_plane_tests(tree, p);  // the measured cost's walk, checked against the exact model
   }
   return sum / samples;
 }
@@ -268,6 +258,9 @@ TEST(ExpectedCosts, OnePlaneHalvingTheBoxCostsOneTestForPointsAndLines) {
 // E_point = 1 + 1/2 + 1/4 + 1/2 and E_line = 1 + (4 + 5/2 + 4) / 6.
 TEST(ExpectedCosts, FourNodeTreeGivesSumsOfCellVolumesAndAreas) {
   const ExpectedCosts c = expected_costs(four_node_tree(), 0.0);
+  EXPECT_EQ(point_plane_tests(four_node_tree(), {0.75, 0.75, 0.5}), 3u);  // the cell x, y > 1/2
+  EXPECT_EQ(point_plane_tests(four_node_tree(), {0.75, 0.25, 0.5}), 2u);  // an empty slot under the front child
+  EXPECT_EQ(point_plane_tests(four_node_tree(), {0.25, 0.75, 0.5}), 2u);  // the back child
   EXPECT_NEAR(c.e_point, 2.25, 1e-12);
   EXPECT_NEAR(c.e_line, 2.75, 1e-12);
 }

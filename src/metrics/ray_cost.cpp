@@ -29,6 +29,16 @@ std::vector<Ray> metric_rays(const Box& box, std::uint32_t count, std::uint64_t 
   return rays;
 }
 
+std::uint32_t point_plane_tests(const Tree& tree, const Vec3& p) {
+  std::uint32_t tests = 0;
+  for (std::uint32_t v = tree.nodes.empty() ? kNull : 0; v != kNull && !tree.nodes[v].is_cell_leaf();) {
+    const Node& node = tree.nodes[v];
+    ++tests;
+    v = tree.planes[node.plane].distance(p) >= 0 ? node.front : node.back;
+  }
+  return tests;
+}
+
 RayCost ray_cost(const Tree& tree, std::span<const Ray> rays) {
   RayCost out;
   if (rays.empty()) return out;
@@ -39,11 +49,13 @@ RayCost ray_cost(const Tree& tree, std::span<const Ray> rays) {
     out.fragment_tests += shot.fragment_tests;
     hits += shot.hit ? 1 : 0;
     out.max_nodes_visited = std::max(out.max_nodes_visited, shot.nodes_visited);
+    out.point_plane_tests += point_plane_tests(tree, ray.origin);
   }
   const auto n = static_cast<double>(rays.size());
   out.nodes_visited /= n;
   out.fragment_tests /= n;
   out.hit_fraction = hits / n;
+  out.point_plane_tests /= n;
   return out;
 }
 

@@ -57,7 +57,8 @@ void add_costs(const TreeMetrics& m, nlohmann::json& out) {
               {"ray_nodes_visited", m.ray.nodes_visited},
               {"ray_fragment_tests", m.ray.fragment_tests},
               {"ray_hit_fraction", m.ray.hit_fraction},
-              {"ray_max_nodes_visited", m.ray.max_nodes_visited}});
+              {"ray_max_nodes_visited", m.ray.max_nodes_visited},
+              {"point_plane_tests", m.ray.point_plane_tests}});
 }
 
 }  // namespace
