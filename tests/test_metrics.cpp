@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -507,6 +508,23 @@ TEST(MeasureTree, FullMetricsAreDeterministicAndOnlyTheyCarryQueryCosts) {
   EXPECT_LT(a["culled_nodes_visited"].get<double>(), a["full_nodes_visited"].get<double>());
   EXPECT_GT(a["ray_nodes_visited"].get<double>(), 0.0);
   EXPECT_FALSE(to_json(measure_tree(tree)).contains("e_point"));
+}
+
+// The report's tables take each metric's group, unit and meaning from analysis/metric_docs.json; a
+// metric added here without its line there would show up unexplained.
+TEST(MeasureTree, EveryEmittedMetricIsDocumentedForTheReport) {
+  std::ifstream in(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/metric_docs.json");
+  const nlohmann::json file = nlohmann::json::parse(in);
+  const nlohmann::json& docs = file["metrics"];
+  const auto& groups = file["groups"];
+  MetricsSettings s;
+  s.rays = 10;
+  const nlohmann::json emitted = to_json(measure_tree(build_scene("random-triangles", 100, "random"), s));
+  for (const auto& [key, value] : emitted.items()) EXPECT_TRUE(docs.contains(key)) << key << " is not in metric_docs.json";
+  for (const auto& [key, doc] : docs.items()) {
+    EXPECT_FALSE(doc["meaning"].get<std::string>().empty()) << key;
+    EXPECT_NE(std::find(groups.begin(), groups.end(), doc["group"]), groups.end()) << key << ": unknown group";
+  }
 }
 
 // ------------------------------------------------------------------------------------------------
