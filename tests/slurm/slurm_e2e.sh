@@ -35,6 +35,12 @@ start=$SECONDS
 rm -rf "$out"
 mkdir -p "$out"
 out=$(realpath "$out")
+# One snapshot of the binary for every shard, the merge and the unsharded sweep: a rebuild while
+# the test runs would otherwise mix two builds (and a shard could meet a half-written file).
+mkdir -p "$out/bin"
+cp "$bspbench" "$out/bin/bspbench"
+bspbench=$out/bin/bspbench
+"$bspbench" sweep --help >/dev/null || die "$bspbench: the copy does not run"
 # Sockets live here, not in OUT_DIR: a unix socket's path is limited to 107 bytes, and munged wants
 # every directory above its socket searchable by all.
 run=$(mktemp -d /tmp/bspbench-slurm.XXXXXX)
@@ -155,7 +161,7 @@ done
 [[ $state == idle ]] || die "node $node is not idle after 60 s (sinfo says '${state:-nothing}')"
 echo "slurm_e2e: one-node Slurm $(sinfo -V | cut -d' ' -f2) up on $node in $((SECONDS - start)) s"
 
-read -r array_id merge_id < <("$repo/analysis/slurm/submit.sh" --suite smoke --shards 3 --out "$out/sharded" \
+read -r array_id merge_id < <(BSPBENCH=$bspbench "$repo/analysis/slurm/submit.sh" --suite smoke --shards 3 --out "$out/sharded" \
   --cpus-per-task=1 --time=10)
 [[ $array_id =~ ^[0-9]+$ && $merge_id =~ ^[0-9]+$ ]] || die "submit.sh printed no job ids"
 
