@@ -51,17 +51,21 @@ std::vector<MeshEntry> available_meshes() {
   return out;
 }
 
-Scene load_mesh_scene(std::string_view scene_name, const ParamAssignments& params) {
-  if (!params.empty())
-    throw UsageError("scene " + std::string(scene_name) + ": unknown parameter '" + params.front().first +
-                     "' (mesh scenes take no parameters)");
+std::string mesh_scene_path(std::string_view scene_name) {
   const std::string_view name = scene_name.substr(kMeshPrefix.size());
   const auto meshes = available_meshes();
   const auto it = std::find_if(meshes.begin(), meshes.end(), [&](const MeshEntry& m) { return m.name == name; });
   if (it == meshes.end())
     throw UsageError("unknown mesh scene '" + std::string(scene_name) + "': no such mesh in " + mesh_cache_dir() +
                      (meshes.empty() ? " (empty: run generators/fetch_meshes.sh)" : " (bspbench scenes lists them)"));
-  Scene scene = read_mesh(it->path);
+  return it->path;
+}
+
+Scene load_mesh_scene(std::string_view scene_name, const ParamAssignments& params) {
+  if (!params.empty())
+    throw UsageError("scene " + std::string(scene_name) + ": unknown parameter '" + params.front().first +
+                     "' (mesh scenes take no parameters)");
+  Scene scene = read_mesh(mesh_scene_path(scene_name));
   scene.name = std::string(scene_name);
   return scene;
 }

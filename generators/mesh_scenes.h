@@ -24,6 +24,9 @@ bool is_mesh_scene(std::string_view scene_name);
 std::string mesh_cache_dir();
 // The meshes in the cache, sorted by name; empty when nothing has been fetched.
 std::vector<MeshEntry> available_meshes();
+// The file of "mesh:NAME" in the cache. Throws UsageError for a name not in the cache (saying how to
+// fetch the meshes).
+std::string mesh_scene_path(std::string_view scene_name);
 // Loads "mesh:NAME" through read_mesh; the scene keeps that name. Mesh scenes take no parameters.
 // Throws UsageError for a parameter or a name not in the cache (saying how to fetch the meshes).
 Scene load_mesh_scene(std::string_view scene_name, const ParamAssignments& params);

@@ -2,7 +2,8 @@
 // merges to the unsharded report in every deterministic field, and bad shard sets are rejected;
 // `report` renders every plot it links as a valid PNG, merges' included; a merge run's command
 // repeats it; `regress` exits 0 on an identical report, 1 on a changed result and 2 on bad input,
-// and catches a planted slowdown of one heuristic's builds and merges.
+// and catches a planted slowdown of one heuristic's builds and merges. Suites users write as JSON
+// run like the built-in ones, journal by their text, and bad ones are one-line errors.
 #include <gtest/gtest.h>
 
 #include "cli_runner.h"
@@ -13,10 +14,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include "mesh_scenes.h"
 #include "sweep/record.h"
 #include "sweep/report.h"
 #include "sweep/runner.h"
@@ -268,4 +271,208 @@ TEST_F(SweepCli, ReportRendersTheSegmentBoundAndDoomSections) {
   EXPECT_EQ(images, 2u);  // the bound plot, and the Doom Pareto plots (one image)
   EXPECT_EQ(page.find("{&quot;"), std::string::npos) << "a JSON dump in the page";
   EXPECT_NE(page.find("<h3>Environment</h3>"), std::string::npos);
+}
+
+// ---- Suites users write (sweep/suite_file.h, analysis/SUITE_SCHEMA.md) ----
+
+namespace {
+
+const fs::path kExampleSuite = fs::path(BSPBENCH_SOURCE_DIR) / "analysis" / "suites" / "example.json";
+const fs::path kCourtyard = fs::path(BSPBENCH_SOURCE_DIR) / "analysis" / "suites" / "meshes" / "courtyard.obj";
+
+// Lines of `text` (a trailing newline ends the last one).
+std::size_t line_count(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+
+}  // namespace
+
+// The committed example suite: (city at 2 sizes + the courtyard mesh) x 2 heuristics x 2 shapes x 3
+// seeds = 36 runs, none failing; one and two threads agree in every deterministic field; the report
+// records the suite file's text; the mesh is a scene of the report like a generated one; a mesh
+// run's command rebuilds its tree.
+TEST_F(SweepCli, ExampleSuiteFileRunsAlikeOnOneAndTwoThreadsAndItsReportRenders) {
+  ASSERT_EQ(bspbench("sweep --suite " + kExampleSuite.string() + " --threads 1 --out one/report.json"), 0) << err_;
+  ASSERT_EQ(bspbench("sweep --suite " + kExampleSuite.string() + " --threads 2 --out two/report.json"), 0) << err_;
+  const auto one = read_report((dir_ / "one" / "report.json").string());
+  const auto two = read_report((dir_ / "two" / "report.json").string());
+  EXPECT_EQ(one["runs"].size(), 36u);
+  EXPECT_EQ(one["summary"]["failures"], 0);
+  EXPECT_EQ(one["summary"]["complete"], true);
+  EXPECT_EQ(one["summary"]["invariant_violations"], 0);
+  EXPECT_EQ(one["summary"]["validation_violations"], 0);
+  EXPECT_TRUE(deterministic_view(one) == deterministic_view(two)) << "1 and 2 threads differ";
+  EXPECT_EQ(one["suite"]["name"], "example");
+  EXPECT_EQ(one["suite"]["source"]["path"], kExampleSuite.string());
+  EXPECT_EQ(one["suite"]["source"]["text"], slurp(kExampleSuite));
+
+  std::map<std::string, std::size_t> per_scene;
+  const nlohmann::json* mesh_run = nullptr;
+  for (const auto& r : one["runs"]) {
+    const auto& id = r["id"];
+    ++per_scene[id["scene"].get<std::string>()];
+    if (id["scene"] == "file:meshes/courtyard.obj") {
+      EXPECT_EQ(id["n"], 0);
+      EXPECT_EQ(id["n_polygons"], 59);
+      EXPECT_TRUE(id["scene_params"].empty());
+      EXPECT_TRUE(id.contains("scene_file_hash"));
+      if (id["seed"] == 2 && id["shape"] == "strict") mesh_run = &r;
+    } else {
+      EXPECT_EQ(id["scene_params"]["max_height"], 12.0) << id;  // the generator's parameter reached the scene
+    }
+  }
+  EXPECT_EQ(per_scene, (std::map<std::string, std::size_t>{{"city", 24}, {"file:meshes/courtyard.obj", 12}}));
+
+  ASSERT_NE(mesh_run, nullptr);
+  const std::string command = (*mesh_run)["id"]["command"];
+  ASSERT_EQ(command.rfind("bspbench build --input ", 0), 0u) << command;
+  ASSERT_EQ(bspbench(command.substr(9) + " --json"), 0) << command << "\n" << err_;
+  const auto rebuilt = nlohmann::json::parse(out_);
+  for (const char* metric : {"fragments", "max_depth", "e_point", "e_line"})
+    EXPECT_EQ(rebuilt[metric], (*mesh_run)["metrics"][metric]) << metric << " of " << command;
+
+  ASSERT_EQ(bspbench("report --in one/report.json --out html"), 0) << err_;
+  const std::string page = slurp(dir_ / "html" / "index.html");
+  EXPECT_NE(page.find("<h2 id='city'>city</h2>"), std::string::npos);
+  EXPECT_NE(page.find(">file:meshes/courtyard.obj</h2>"), std::string::npos);
+  const std::regex img("<img src='([^']+)'");
+  std::size_t images = 0;
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), img); it != std::sregex_iterator(); ++it, ++images)
+    EXPECT_TRUE(is_png(dir_ / "html" / (*it)[1].str())) << (*it)[1].str();
+  EXPECT_EQ(images, 4u);  // a Pareto view and a scaling plot per scene
+}
+
+// A suite file's journal is keyed by its text: the same file resumes, an edited one (even its
+// summary alone) starts afresh; an edited mesh changes exactly its runs' keys. Shards of a suite
+// file merge to the unsharded report.
+TEST_F(SweepCli, SuiteFileJournalFollowsItsTextAndItsMeshAndShardsMerge) {
+  fs::create_directories(dir_ / "suite" / "meshes");
+  fs::copy_file(kCourtyard, dir_ / "suite" / "meshes" / "courtyard.obj");
+  const auto write_suite = [&](const std::string& summary) {
+    std::ofstream(dir_ / "suite" / "mine.json")
+        << R"({"name": "mine", "summary": ")" << summary << R"(", "blocks": [{"scenes": ["city", "file:meshes/courtyard.obj"],
+             "heuristics": ["crystal"], "sizes": [96], "seeds": [1, 2], "validation": {"views": 1}}]})";
+  };
+  const auto keys = [&](const std::string& report) {
+    std::map<std::string, std::string> out;  // key -> scene
+    const auto read = read_report((dir_ / report).string());
+    for (const auto& r : read["runs"]) out[r["key"].get<std::string>()] = r["id"]["scene"].get<std::string>();
+    return out;
+  };
+  write_suite("first");
+  ASSERT_EQ(bspbench("sweep --suite suite/mine.json --threads 2 --out a.json --journal-dir j"), 0) << err_;
+  EXPECT_NE(err_.find("4 jobs, 0 already in"), std::string::npos) << err_;
+  ASSERT_EQ(bspbench("sweep --suite suite/mine.json --threads 2 --out b.json --journal-dir j"), 0) << err_;
+  EXPECT_NE(err_.find("4 jobs, 4 already in"), std::string::npos) << err_;
+  write_suite("second");
+  ASSERT_EQ(bspbench("sweep --suite suite/mine.json --threads 2 --out c.json --journal-dir j"), 0) << err_;
+  EXPECT_NE(err_.find("4 jobs, 0 already in"), std::string::npos) << err_;
+  EXPECT_NE(read_report((dir_ / "a.json").string())["suite"]["definition_hash"],
+            read_report((dir_ / "c.json").string())["suite"]["definition_hash"]);
+  EXPECT_EQ(keys("a.json").size(), 4u);
+  EXPECT_EQ(keys("a.json"), keys("c.json"));  // the same runs
+
+  std::ofstream(dir_ / "suite" / "meshes" / "courtyard.obj", std::ios::app) << "# edited\n";
+  ASSERT_EQ(bspbench("sweep --suite suite/mine.json --threads 2 --out d.json --journal-dir j"), 0) << err_;
+  const auto before = keys("c.json"), after = keys("d.json");
+  ASSERT_EQ(after.size(), 4u);
+  for (const auto& [key, scene] : after) EXPECT_EQ(before.count(key), scene == "city" ? 1u : 0u) << scene;
+
+  ASSERT_EQ(bspbench("sweep --suite suite/mine.json --threads 1 --shard 0/2 --out s0.json --journal-dir j"), 0) << err_;
+  ASSERT_EQ(bspbench("sweep --suite suite/mine.json --threads 1 --shard 1/2 --out s1.json --journal-dir j"), 0) << err_;
+  ASSERT_EQ(bspbench("merge-reports --out merged.json s0.json s1.json"), 0) << err_;
+  EXPECT_TRUE(deterministic_view(read_report((dir_ / "merged.json").string())) ==
+              deterministic_view(read_report((dir_ / "d.json").string())));
+}
+
+// Every kind of bad suite file is exit code 2 and one line naming the file and the JSON path of the
+// problem, and nothing is written: no report, no journal.
+TEST_F(SweepCli, BadSuiteFilesAreOneLineErrorsWithTheirJsonPath) {
+  fs::copy_file(kCourtyard, dir_ / "courtyard.obj");
+  std::ofstream(dir_ / "broken.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 7\n";
+  const std::string ok_block = R"("scenes": ["city"], "sizes": [100])";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "seedz": [1]}]})",
+       "s.json: blocks[0]: unknown key 'seedz' (known: scenes, heuristics, incremental, sizes, scene_sizes, seeds, "
+       "shapes, validation)"},
+      {R"({"name": "x", "bloks": []})", "s.json: unknown key 'bloks'"},
+      {R"({"name": "x", "blocks": [{"scenes": ["city"], "sizes": "100"}]})",
+       "s.json: blocks[0].sizes: expected an array, got string"},
+      {R"({"name": 7, "blocks": [{)" + ok_block + "}]}", "s.json: name: expected a string, got 7"},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "heuristics": ["crystal", "foo"]}]})",
+       "s.json: blocks[0].heuristics[1]: unknown heuristic 'foo' (known: "},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "heuristics": [{"name": "weighted", "params": {"splits": 1}}]}]})",
+       "s.json: blocks[0].heuristics[0].params.splits: heuristic weighted: unknown parameter 'splits' (known: "},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "heuristics": ["crystal:splits=1"]}]})",
+       "s.json: blocks[0].heuristics[0]: heuristic crystal: unknown parameter 'splits'"},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "heuristics": ["weighted:candidates=-3"]}]})",
+       "s.json: blocks[0].heuristics[0]: heuristic weighted: parameter candidates=-3 is outside [0, "},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "heuristics": [{"name": "naylor", "params": {"model": 3}}]}]})",
+       "s.json: blocks[0].heuristics[0].params.model: expected a string (one of the parameter's choices), got 3"},
+      {R"({"name": "x", "blocks": [{"scenes": ["citty"], "sizes": [100]}]})",
+       "s.json: blocks[0].scenes[0]: unknown scene 'citty' (known: "},
+      {R"({"name": "x", "blocks": [{"scenes": [{"generator": "city", "params": {"max_height": 0}}], "sizes": [100]}]})",
+       "s.json: blocks[0].scenes[0].params.max_height: scene city: parameter max_height=0 is outside ["},
+      {R"({"name": "x", "blocks": [{"scenes": [{"generator": "city", "params": {"n": 100}}], "sizes": [100]}]})",
+       "s.json: blocks[0].scenes[0].params.n: a scene's size comes from \"sizes\""},
+      {R"({"name": "x", "blocks": [{"scenes": ["city", "file:missing.obj"], "sizes": [100]}]})",
+       "s.json: blocks[0].scenes[1]: no such file: "},
+      {R"({"name": "x", "blocks": [{"scenes": ["file:broken.obj"]}]})", "s.json: blocks[0].scenes[0]: "},
+      {R"({"name": "x", "blocks": [{"scenes": ["mesh:no-such-mesh"]}]})",
+       "s.json: blocks[0].scenes[0]: unknown mesh scene 'mesh:no-such-mesh'"},
+      {"{\"name\": \"x\",\n \"blocks\": [{\"scenes\": [\"city\"],}]}",
+       "s.json: malformed JSON at line 2, column 33: syntax error"},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "seeds": []}]})",
+       "s.json: blocks[0].seeds: empty list (give at least one seed)"},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "seeds": [1, 2, 1]}]})",
+       "s.json: blocks[0].seeds[2]: repeats blocks[0].seeds[0]"},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "heuristics": ["crystal", "crystal:candidates=20"]}]})",
+       "s.json: blocks[0].heuristics[1]: repeats blocks[0].heuristics[0]"},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "sizes": [200]}]})", "s.json: blocks[0]: key 'sizes' given twice"},
+      {R"({"name": "x", "blocks": [{"scenes": ["city"], "sizes": [1000000000]}]})",
+       "s.json: blocks[0].sizes[0]: 1000000000 is outside city's range of n, [1, 1e+08]"},
+      {R"({"name": "x", "blocks": [{"scenes": ["city"]}]})", "s.json: blocks[0]: missing key 'sizes' (city takes a size n)"},
+      {R"({"name": "x", "blocks": [{"scenes": ["file:courtyard.obj"], "sizes": [100]}]})",
+       "s.json: blocks[0].sizes: no scene of this block takes a size"},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "incremental": true, "shapes": ["leafy"]}]})",
+       "s.json: blocks[0].shapes[0]: a leafy tree is built recursively, not incrementally"},
+      {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "shapes": ["round"]}]})",
+       "s.json: blocks[0].shapes[0]: unknown shape 'round' (known: strict, coarse, leafy)"},
+      {R"({"name": "x", "animations": [{}]})", "s.json: animations: animate blocks are not supported in suite files"},
+      {R"({"name": "quick", "blocks": [{)" + ok_block + "}]}", "s.json: name: 'quick' is a built-in suite"},
+      {R"({"name": "x"})", "s.json: no runs: give \"blocks\", \"merges\" or \"occlusions\""},
+      {R"({"name": "x", "merges": [{"pairs": ["spheres"], "ops": ["unite"], "sizes": [50]}]})",
+       "s.json: merges[0].ops[0]: unknown set operation 'unite'"},
+      {R"({"name": "x", "occlusions": [{"scenes": ["random-segments"], "sizes": [100]}]})",
+       "s.json: occlusions[0].scenes[0]: random-segments is 2D"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [text, message] = cases[i];
+    std::ofstream(dir_ / "s.json") << text;
+    EXPECT_EQ(bspbench("sweep --suite s.json --out out/report.json"), 2) << text << "\n" << err_;
+    EXPECT_EQ(err_.rfind("bspbench sweep: " + message, 0), 0u) << "case " << i << ": " << err_;
+    EXPECT_EQ(line_count(err_), 1u) << "case " << i << ": " << err_;
+    EXPECT_FALSE(fs::exists(dir_ / "out")) << "case " << i << " wrote output";
+  }
+  // The broken mesh is named with its own problem after the JSON path.
+  std::ofstream(dir_ / "s.json") << R"({"name": "x", "blocks": [{"scenes": ["file:broken.obj"]}]})";
+  EXPECT_EQ(bspbench("sweep --suite s.json --out out/report.json"), 2);
+  EXPECT_NE(err_.find("s.json: blocks[0].scenes[0]: broken.obj: "), std::string::npos) << err_;
+  EXPECT_EQ(bspbench("sweep --suite nowhere/s.json --out out/report.json"), 2);
+  EXPECT_EQ(err_, "bspbench sweep: nowhere/s.json: no such suite file\n");
+}
+
+// A mesh of the cache, mesh:NAME, runs once per heuristic and seed under that name.
+TEST_F(SweepCli, SuiteFileRunsACachedMeshByName) {
+  const auto meshes = bsp::available_meshes();
+  if (std::none_of(meshes.begin(), meshes.end(), [](const bsp::MeshEntry& m) { return m.name == "P"; }))
+    GTEST_SKIP() << "no sample meshes (generators/fetch_meshes.sh)";
+  std::ofstream(dir_ / "s.json")
+      << R"({"name": "cached", "blocks": [{"scenes": ["mesh:P"], "heuristics": ["crystal", "naylor"], "seeds": [1, 2]}]})";
+  ASSERT_EQ(bspbench("sweep --suite s.json --threads 2 --out r.json"), 0) << err_;
+  const auto report = read_report((dir_ / "r.json").string());
+  ASSERT_EQ(report["runs"].size(), 4u);
+  for (const auto& r : report["runs"]) {
+    EXPECT_EQ(r["id"]["scene"], "mesh:P");
+    EXPECT_EQ(r["id"]["command"].get<std::string>().rfind("bspbench build --scene mesh:P --seed ", 0), 0u) << r["id"];
+    EXPECT_EQ(r["invariants"]["violations"], 0);
+  }
 }

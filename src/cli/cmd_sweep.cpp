@@ -12,6 +12,7 @@
 #include "sweep/record.h"
 #include "sweep/report.h"
 #include "sweep/runner.h"
+#include "sweep/suite_file.h"
 
 namespace bsp::cli {
 
@@ -50,7 +51,8 @@ int run(Args& args) {
   options.fresh = args.flag("--fresh");
   args.finish();
   if (const char* plant = std::getenv("BSPBENCH_PLANT_SLOWDOWN")) options.plant = sweep::parse_planted_slowdown(plant);
-  const sweep::Suite& suite = sweep::find_suite(suite_name);
+  const sweep::Suite suite =
+      sweep::names_suite_file(suite_name) ? sweep::load_suite_file(suite_name) : sweep::find_suite(suite_name);
   options.journal_dir = journal_dir.value_or((std::filesystem::path(out).parent_path() / "journal").string());
   options.log = &std::cerr;
   options.log_is_terminal = ::isatty(STDERR_FILENO) != 0;
@@ -64,11 +66,12 @@ int run(Args& args) {
 
 Command sweep_command() {
   return {"sweep",
-          "--suite NAME [--threads N] [--shard i/N] [--out FILE] [--journal-dir DIR] [--fresh]",
+          "--suite NAME|FILE.json [--threads N] [--shard i/N] [--out FILE] [--journal-dir DIR] [--fresh]",
           "run a suite of builds (scenes x heuristics x seeds x sizes), resumable, and write its report", run,
-          {{"--suite NAME",
-            "which suite: smoke, quick, default, merge, dynamic, occlusion, segments, doom or full (src/sweep/suite.h; "
-            "README lists them with run times)"},
+          {{"--suite NAME|FILE.json",
+            "a built-in suite: smoke, quick, default, merge, dynamic, occlusion, segments, doom or full "
+            "(src/sweep/suite.h; README lists them with run times); or your own suite file, taken as a file when it "
+            "ends in .json or holds a '/' (analysis/SUITE_SCHEMA.md)"},
            {"--threads N", "jobs run at once (default: OMP_NUM_THREADS or the core count)"},
            {"--shard i/N", "run only share i of N (0-based) of the suite's jobs; merge with merge-reports"},
            {"--out FILE", "the report (default results/report.json)"},

@@ -1,7 +1,11 @@
 #include "sweep/job.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <map>
 #include <set>
@@ -10,6 +14,8 @@
 #include "common/errors.h"
 #include "common/hash.h"
 #include "dynamic/updater.h"
+#include "io/mesh_reader.h"
+#include "mesh_scenes.h"
 #include "solid_pairs.h"
 #include "split/registry.h"
 #include "sweep/doom_job.h"
@@ -39,9 +45,9 @@ std::vector<std::uint64_t> sizes_for(const GeneratorInfo& g, const SuiteBlock& b
   return out;
 }
 
-std::vector<std::string> scene_names(const SuiteBlock& block) {
+std::vector<SceneSpec> scene_specs(const SuiteBlock& block) {
   if (!block.scenes.empty()) return block.scenes;
-  std::vector<std::string> all;
+  std::vector<SceneSpec> all;
   for (const auto& g : generators())
     if (!g.closed_solid && !g.segments) all.push_back(g.name);
   return all;
@@ -55,10 +61,10 @@ std::vector<std::string> heuristic_names(const SuiteBlock& block) {
   return all;
 }
 
-Job make_job(const GeneratorInfo& g, const std::string& heuristic, bool incremental, Shape shape,
-             std::uint64_t seed, std::uint64_t n, std::uint32_t views) {
-  Job job{g.name, {}, heuristic, incremental, shape, seed, n, views, std::nullopt, 0, {}, std::nullopt, false,
-          std::nullopt};
+Job make_job(const GeneratorInfo& g, const ParamAssignments& params, const std::string& heuristic, bool incremental,
+             Shape shape, std::uint64_t seed, std::uint64_t n, std::uint32_t views) {
+  Job job{g.name, params, heuristic, incremental, shape, seed, n, views, std::nullopt, 0, {}, std::nullopt, false,
+          std::nullopt, std::nullopt};
   if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
   if (find_spec(g, "seed")) job.scene_params.emplace_back("seed", std::to_string(seed));
   assign_key(job);
@@ -95,7 +101,7 @@ void expand_merge_block(const MergeBlock& block, std::vector<Job>& out) {
         for (auto op : set_ops(block))
           for (auto seed : block.seeds) {
             Job job{pair.name, {}, h, false, Shape::Strict, seed, n, 0, op, block.points, {}, std::nullopt, false,
-                    std::nullopt};
+                    std::nullopt, std::nullopt};
             if (n > 0) job.scene_params.emplace_back("n", std::to_string(n));
             job.scene_params.emplace_back("seed", std::to_string(seed));
             assign_key(job);
@@ -122,7 +128,7 @@ void expand_animate_block(const AnimateBlock& block, std::vector<Job>& out) {
           for (auto moving : block.moving)
             for (auto speed : block.speeds)
               for (auto seed : block.seeds) {
-                Job job = make_job(g, h, false, Shape::Strict, seed, n, block.views);
+                Job job = make_job(g, {}, h, false, Shape::Strict, seed, n, block.views);
                 job.animate = AnimateParams{strategy,  moving, block.frames, block.object,     block.object_n,
                                             block.size, speed, block.spin,  block.check_every, block.drift_every};
                 assign_key(job);
@@ -139,7 +145,7 @@ void expand_occlude_block(const OccludeBlock& block, std::vector<Job>& out) {
     for (auto n : block_sizes(g, block.sizes))
       for (const auto& h : heuristic_names(heuristics_only))
         for (auto seed : block.seeds) {
-          Job job = make_job(g, h, false, Shape::Strict, seed, n, block.views);
+          Job job = make_job(g, {}, h, false, Shape::Strict, seed, n, block.views);
           job.occlude = true;
           assign_key(job);
           out.push_back(std::move(job));
@@ -147,14 +153,49 @@ void expand_occlude_block(const OccludeBlock& block, std::vector<Job>& out) {
   }
 }
 
+bool is_mesh(const SceneSpec& spec) { return is_file_scene(spec.name) || is_mesh_scene(spec.name); }
+
+SceneFile scene_file(const SceneSpec& spec) {
+  std::string path = spec.path;
+  if (path.empty())
+    path = is_file_scene(spec.name) ? spec.name.substr(kFileScenePrefix.size()) : mesh_scene_path(spec.name);
+  std::string hash = file_hash(path);
+  return {std::move(path), std::move(hash)};
+}
+
+// A mesh has no size and no seed of its own: one job per heuristic, shape and seed, at the block's
+// views for small scenes (its polygon count is not known before it is read).
+void expand_mesh(const SuiteBlock& block, const SceneSpec& spec, std::vector<Job>& out) {
+  const SceneFile file = scene_file(spec);
+  for (const auto& h : heuristic_names(block))
+    for (auto shape : block.shapes)
+      for (auto seed : block.seeds) {
+        Job job;
+        job.scene = spec.name;
+        job.heuristic = h;
+        job.incremental = block.incremental;
+        job.shape = shape;
+        job.seed = seed;
+        job.validation_views = block.validation.views;
+        job.file = file;
+        assign_key(job);
+        out.push_back(std::move(job));
+      }
+}
+
 void expand_block(const SuiteBlock& block, std::vector<Job>& out) {
-  for (const auto& scene : scene_names(block)) {
-    const GeneratorInfo& g = find_generator(scene);
+  for (const auto& spec : scene_specs(block)) {
+    if (is_mesh(spec)) {
+      expand_mesh(block, spec, out);
+      continue;
+    }
+    const GeneratorInfo& g = find_generator(spec.name);
     for (auto n : sizes_for(g, block))
       for (const auto& h : heuristic_names(block))
         for (auto shape : block.shapes)
           for (auto seed : block.seeds)
-            out.push_back(make_job(g, h, block.incremental, shape, seed, n, block.validation.views_for(n)));
+            out.push_back(
+                make_job(g, spec.params, h, block.incremental, shape, seed, n, block.validation.views_for(n)));
   }
 }
 
@@ -171,6 +212,7 @@ nlohmann::json pair_params_json(const Job& job) {
 }
 
 ParamSet scene_params(const Job& job) {
+  if (job.file) return {};
   const GeneratorInfo& g = find_generator(job.scene);
   return ParamSet::resolve(g.params, job.scene_params, "scene " + g.name);
 }
@@ -301,13 +343,18 @@ std::string dynamic_hash(const Job& job) {
   return h.hex();
 }
 
+// What stands for a drawing job's scene in its key: a generator's resolved parameters, a mesh's bytes.
+std::string scene_key(const Job& job) {
+  return job.file ? "file " + job.file->hash : scene_params(job).canonical();
+}
+
 void assign_key(Job& job) {
   switch (job.kind()) {
     case JobKind::Merge: job.key = merge_hash(job); break;
     case JobKind::Animate:
     case JobKind::Occlude: job.key = dynamic_hash(job); break;
     case JobKind::Doom: job.key = doom_key(job); break;
-    case JobKind::Draw: job.key = run_hash(job, scene_params(job).canonical()); break;
+    case JobKind::Draw: job.key = run_hash(job, scene_key(job)); break;
   }
 }
 
@@ -334,9 +381,10 @@ const std::string& scene_hash(const Job& job) {
   return it->second;
 }
 
-// What a run measures, apart from the nominal size: two jobs alike in all of it are one run.
+// What a run measures, apart from the nominal size: two jobs alike in all of it are one run. A mesh
+// has no nominal size, so its key says it all.
 std::string run_identity(const Job& job) {
-  return job.kind() == JobKind::Draw ? run_hash(job, scene_hash(job)) : job.key;
+  return job.kind() == JobKind::Draw && !job.file ? run_hash(job, scene_hash(job)) : job.key;
 }
 
 }  // namespace
@@ -380,12 +428,36 @@ std::vector<Job> shard_jobs(const std::vector<Job>& jobs, Shard s) {
   return out;
 }
 
-std::string definition_hash(const std::string& suite_name, const std::vector<Job>& jobs) {
+std::string definition_hash(const std::string& suite_name, const std::vector<Job>& jobs, std::string_view source_text) {
   Hasher h;
   h.add_string(suite_name);
   h.add_u64(jobs.size());
   for (const auto& j : jobs) h.add_string(j.key);
+  if (!source_text.empty()) h.add_string(source_text);
   return h.hex();
+}
+
+std::string file_hash(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": no such file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in.is_open()) throw InputError(path + ": cannot open the file");
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  Hasher h;
+  h.add_string(bytes);
+  return h.hex();
+}
+
+Scene job_scene(const Job& job) {
+  if (!job.file) {
+    Scene scene = make_scene(job.scene, job.scene_params);
+    check_scene(scene, "scene " + scene.name);
+    return scene;
+  }
+  Scene scene = read_mesh(job.file->path);
+  scene.name = job.scene;
+  check_scene(scene, job.file->path);
+  return scene;
 }
 
 namespace {
@@ -446,14 +518,33 @@ nlohmann::json job_identity(const Job& job) {
 
 namespace {
 
+// `text` as one word of a POSIX shell command.
+std::string shell_word(const std::string& text) {
+  const bool plain = !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '/' || c == '.' || c == '_' || c == '-' || c == ':' || c == '+' || c == ',' || c == '=';
+  });
+  if (plain) return text;
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string scene_arguments(const Job& job) {
+  if (job.file && is_file_scene(job.scene)) return " --input " + shell_word(job.file->path);
+  std::string out = " --scene " + shell_word(job.scene);
+  if (job.n > 0) out += " --n " + std::to_string(job.n);
+  for (const auto& [k, v] : job.scene_params)
+    if (k != "n" && k != "seed") out += " --scene-param " + shell_word(k + "=" + v);
+  return out;
+}
+
 nlohmann::json drawing_identity(const Job& job) {
-  std::string command = "bspbench build --scene " + job.scene;
-  if (job.n > 0) command += " --n " + std::to_string(job.n);
-  command += " --seed " + std::to_string(job.seed) + build_arguments(job) + " --shape " + shape_name(job.shape);
-  return {{"kind", "draw"},
+  const std::string command = "bspbench build" + scene_arguments(job) + " --seed " + std::to_string(job.seed) +
+                              build_arguments(job) + " --shape " + shape_name(job.shape);
+  nlohmann::json id{{"kind", "draw"},
           {"scene", job.scene},
           {"scene_params", scene_params(job).to_json()},
-          {"constant_density", find_generator(job.scene).constant_density},
+          {"constant_density", !job.file && find_generator(job.scene).constant_density},
           {"heuristic", job.heuristic},
           {"heuristic_params", heuristic_params(job).to_json()},
           {"build", job.incremental ? "incremental" : "recursive"},
@@ -462,6 +553,8 @@ nlohmann::json drawing_identity(const Job& job) {
           {"n", job.n},
           {"validation_views", job.validation_views},
           {"command", command}};
+  if (job.file) id["scene_file_hash"] = job.file->hash;
+  return id;
 }
 
 }  // namespace

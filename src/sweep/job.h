@@ -16,11 +16,13 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
 #include "common/params.h"
+#include "scene/scene.h"
 #include "solid/merge.h"
 #include "solid_pairs.h"
 #include "sweep/doom_run.h"
@@ -49,6 +51,14 @@ struct DoomParams {
   DoomBuilder::Kind builder = DoomBuilder::Kind::Heuristic;
 };
 
+// A drawing job's mesh (a file:PATH or mesh:NAME scene): the file it reads, and the hash of the
+// file's bytes, which takes the place of a generator's resolved parameters in the job's key: a
+// changed file is another run, wherever it lies.
+struct SceneFile {
+  std::string path;
+  std::string hash;  // 16 hex digits
+};
+
 enum class JobKind : std::uint8_t { Draw, Merge, Animate, Occlude, Doom };
 
 struct Job {
@@ -67,6 +77,9 @@ struct Job {
   bool occlude = false;  // occlude jobs: validation_views is the number of metric views
   // Doom jobs: validation_views is the order check's eyes; seed and views are 0 but for our heuristics.
   std::optional<DoomParams> doom = std::nullopt;
+  // Drawing jobs of mesh scenes: `scene` is the scene's label (file:PATH as the suite wrote it, or
+  // mesh:NAME), scene_params and n are empty, and the seed feeds only the heuristic.
+  std::optional<SceneFile> file = std::nullopt;
   JobKind kind() const {
     return op        ? JobKind::Merge
            : animate ? JobKind::Animate
@@ -100,12 +113,13 @@ Shard parse_shard(const std::string& text);
 // sizes evenly over shards. Deterministic, and the shards partition the suite.
 std::vector<Job> shard_jobs(const std::vector<Job>& jobs, Shard s);
 
-// Hash of the suite's name and every job key: two reports come from the same suite definition
-// exactly when these agree.
-std::string definition_hash(const std::string& suite_name, const std::vector<Job>& jobs);
+// Hash of the suite's name, every job key and, for a suite file, its text: two reports come from the
+// same suite definition exactly when these agree.
+std::string definition_hash(const std::string& suite_name, const std::vector<Job>& jobs,
+                            std::string_view source_text = {});
 
 // {kind: "draw", scene, scene_params, constant_density, heuristic, heuristic_params, build, shape, seed, n,
-// validation_views}: the identity
+// validation_views; a mesh scene's scene_file_hash}: the identity
 // printed in reports and regression tables, with the `bspbench build` command that rebuilds the tree.
 // A merge job's adds kind "merge", operation, points and operands (each scene with its resolved
 // parameters), and its command is the `bspbench merge` that repeats the run. A Doom job's is
@@ -117,5 +131,12 @@ std::array<SolidOperand, 2> merge_operands(const Job& job);
 
 // Fills job.key from the other fields (resolving parameters, so defaults count).
 void assign_key(Job& job);
+
+// The polygons of a drawing job's scene: generated, or read from its file (once per call), named
+// by the job's scene label. Throws InputError for a file that cannot be read or holds no polygons.
+Scene job_scene(const Job& job);
+
+// Hash of a file's bytes (16 hex digits); throws InputError naming the file when it cannot be read.
+std::string file_hash(const std::string& path);
 
 }  // namespace bsp::sweep

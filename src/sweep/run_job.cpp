@@ -134,8 +134,7 @@ nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& pla
   if (job.occlude) return run_occlude_job(job, plant);
   if (job.doom) return run_doom_job(job, plant);
   const auto start = std::chrono::steady_clock::now();
-  Scene scene = make_scene(job.scene, job.scene_params);
-  check_scene(scene, "scene " + scene.name);
+  const Scene scene = job_scene(job);
   nlohmann::json timings = nlohmann::json::object();
   const Tree tree = build_once(job, scene);
   const bool planted = plant && plant->heuristic == job.heuristic;
@@ -155,6 +154,7 @@ nlohmann::json run_job(const Job& job, const std::optional<PlantedSlowdown>& pla
   const nlohmann::json described = scene_json(scene);
   id["scene_hash"] = described["hash"];
   id["scene_bounds"] = described["bounds"];
+  if (described.contains("load")) id["scene_load"] = described["load"];
   nlohmann::json record{{"key", job.key},
                         {"id", std::move(id)},
                         {"metrics", std::move(metrics)},

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "common/hash.h"
 #include "sweep/calibration.h"
 #include "sweep/environment.h"
 #include "sweep/journal.h"
@@ -87,7 +88,7 @@ void run_pending(Work& w, Journal& journal, double calibration, int threads, con
 
 std::string journal_path(const Suite& suite, const SweepOptions& options) {
   const auto jobs = expand(suite);
-  std::string name = suite.name + "-" + definition_hash(suite.name, jobs) + "-" + executable_hash();
+  std::string name = suite.name + "-" + definition_hash(suite.name, jobs, suite.source.text) + "-" + executable_hash();
   if (options.shard) name += "-shard" + std::to_string(options.shard->index) + "of" + std::to_string(options.shard->count);
   // A planted run must never resume from an honest journal, nor the other way round.
   if (options.plant) name += "-planted-" + options.plant->heuristic + "-x" + std::to_string(options.plant->factor);
@@ -123,8 +124,13 @@ nlohmann::json run_sweep(const Suite& suite, const SweepOptions& options) {
                                {"calibration", to_json(calibration)}, {"journal", path}};
   if (options.plant)
     shard_section["planted_slowdown"] = {{"heuristic", options.plant->heuristic}, {"factor", options.plant->factor}};
-  nlohmann::json suite_json{{"name", suite.name}, {"definition_hash", definition_hash(suite.name, jobs)},
+  nlohmann::json suite_json{{"name", suite.name}, {"definition_hash", definition_hash(suite.name, jobs, suite.source.text)},
                             {"jobs", jobs.size()}};
+  if (!suite.source.text.empty()) {
+    Hasher text_hash;
+    text_hash.add_string(suite.source.text);
+    suite_json["source"] = {{"path", suite.source.path}, {"hash", text_hash.hex()}, {"text", suite.source.text}};
+  }
   return assemble_report(std::move(suite_json), nlohmann::json::array({std::move(shard_section)}), std::move(w.runs),
                          std::move(w.failures));
 }

@@ -4,12 +4,16 @@
 // A suite names no heuristic and, in its main block, no scene: it takes every entry of the
 // registries, so a heuristic or generator added there is swept without further wiring. Sizes are
 // the generators' `n` parameter; a generator without one runs once at its defaults, and a size
-// outside a generator's `n` range is skipped for it.
+// outside a generator's `n` range is skipped for it. A mesh (a file or mesh:NAME) has no size: it
+// runs once per heuristic, shape and seed, the seed feeding only the heuristic.
+//
+// The built-in suites are here; users write their own as JSON (suite_file.h).
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "common/params.h"
 #include "solid/merge.h"
 #include "tree/tree.h"
 
@@ -31,10 +35,27 @@ struct SceneSizes {
   std::vector<std::uint64_t> sizes;
 };
 
+// A scene of a drawing block: a generator by name, with parameters other than n and seed (those come
+// from the block's sizes and seeds); a mesh of the cache, "mesh:NAME" (generators/mesh_scenes.h); or
+// a mesh file, "file:PATH", PATH as its suite wrote it.
+struct SceneSpec {
+  std::string name;
+  ParamAssignments params = {};  // generators only
+  std::string path = {};  // a file scene's file as opened (PATH resolved against the suite's directory)
+  // Implicit, so a block lists bare generator names as plain strings.
+  SceneSpec(std::string scene) : name(std::move(scene)) {}
+  SceneSpec(const char* scene) : name(scene) {}
+  SceneSpec(std::string scene, ParamAssignments scene_params, std::string file_path)
+      : name(std::move(scene)), params(std::move(scene_params)), path(std::move(file_path)) {}
+};
+
+inline constexpr std::string_view kFileScenePrefix = "file:";
+bool is_file_scene(std::string_view scene_name);
+
 struct SuiteBlock {
   // Empty: every generator of the catalog but the closed solids (generators/solids.cpp), which are
   // the operands of set operations (bspbench merge) rather than scenes to draw.
-  std::vector<std::string> scenes;
+  std::vector<SceneSpec> scenes;
   std::vector<std::string> heuristics;  // empty: every registered heuristic; ignored when incremental
   std::vector<std::uint64_t> sizes;
   std::vector<SceneSizes> scene_sizes;  // overrides `sizes` for the scenes named
@@ -103,6 +124,13 @@ struct DoomBlock {
   std::uint32_t views = 4;  // eyes of the Embree order check of our trees
 };
 
+// A suite a user wrote (suite_file.h): the file as named on the command line, and its text, whose
+// hash joins the suite's definition so an edited file never resumes a journal of the old one.
+struct SuiteSource {
+  std::string path;
+  std::string text;
+};
+
 struct Suite {
   std::string name;
   std::string summary;  // one line, with the measured run time
@@ -111,10 +139,11 @@ struct Suite {
   std::vector<AnimateBlock> animations = {};
   std::vector<OccludeBlock> occlusions = {};
   std::vector<DoomBlock> doom = {};
+  SuiteSource source = {};  // empty for the built-in suites
 };
 
 const std::vector<Suite>& suites();
-// Throws UsageError naming the known suites.
+// Throws UsageError naming the known suites (suite files are suite_file.h's).
 const Suite& find_suite(std::string_view name);
 
 }  // namespace bsp::sweep
