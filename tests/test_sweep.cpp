@@ -6,13 +6,15 @@
 // is a timing; the regression gate passes an identical report and fails a changed fragment count, a
 // missing run, a violation, a ray-shooting mismatch and a group of build times significantly 1.6x
 // slower, while 1.4x slower, faster, one outlier and a uniformly slower machine pass; on merge runs
-// it fails a changed merge cost, a failed proof and a slower group of merges.
+// it fails a changed merge cost, a failed proof and a slower group of merges. The complete example
+// of analysis/SUITE_SCHEMA.md expands to the jobs its keys ask for.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -33,6 +35,7 @@
 #include "sweep/report.h"
 #include "sweep/run_job.h"
 #include "sweep/runner.h"
+#include "sweep/suite_file.h"
 
 using namespace bsp;
 using namespace bsp::sweep;
@@ -998,4 +1001,52 @@ TEST(BenchGate, ChangedTreeOrMissingBenchmarkFails) {
 TEST(BenchGate, ReportsAreNotBenchmarkOutputs) {
   EXPECT_TRUE(bsp::sweep::is_benchmark_output(bench_output(8, 1.8, 1e5)));
   EXPECT_FALSE(bsp::sweep::is_benchmark_output(nlohmann::json{{"schema", "bspbench-report"}, {"runs", nlohmann::json::array()}}));
+}
+
+// The complete example of analysis/SUITE_SCHEMA.md (its one ```json block), read as if it lay in
+// analysis/suites/: every key reaches the jobs it should.
+TEST(SweepSuiteFile, SchemaExampleExpandsToWhatItsKeysAsk) {
+  std::ifstream in(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/SUITE_SCHEMA.md");
+  const std::string doc{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const auto begin = doc.find("```json\n");
+  ASSERT_NE(begin, std::string::npos);
+  const auto end = doc.find("```", begin + 8);
+  const std::string text = doc.substr(begin + 8, end - begin - 8);
+  const Suite suite = parse_suite_file(text, std::string(BSPBENCH_SOURCE_DIR) + "/analysis/suites/full-example.json");
+  EXPECT_EQ(suite.name, "full-example");
+  EXPECT_EQ(suite.source.text, text);
+  std::map<std::string, std::size_t> kinds;
+  std::set<std::string> drawn_heuristics;
+  std::size_t incremental = 0, mesh = 0, city = 0;
+  for (const Job& j : expand(suite)) {
+    ++kinds[std::string(job_kind_name(j.kind()))];
+    if (j.kind() != JobKind::Draw) continue;
+    if (j.incremental) {
+      ++incremental;
+      continue;
+    }
+    drawn_heuristics.insert(j.heuristic);
+    if (j.file) {
+      ++mesh;
+      EXPECT_EQ(j.scene, "file:meshes/courtyard.obj");
+      EXPECT_EQ(j.validation_views, 2u);  // a mesh has no size to reduce the views at
+      continue;
+    }
+    if (j.scene == "saddle-grid") {
+      EXPECT_TRUE(j.n == 30 || j.n == 60) << j.n;  // scene_sizes
+    }
+    if (j.scene == "city") {
+      ++city;
+      EXPECT_NE(std::find(j.scene_params.begin(), j.scene_params.end(), std::pair<std::string, std::string>{"max_height", "12"}),
+                j.scene_params.end());
+    }
+    EXPECT_EQ(j.validation_views, j.n > 500 ? 1u : 2u) << j.scene << " " << j.n;
+  }
+  EXPECT_EQ(drawn_heuristics, (std::set<std::string>{"crystal", "weighted:split_weight=4,coplanar_weight=1",
+                                                     "naylor:candidates=8,model=area"}));
+  EXPECT_EQ(mesh, 3u * 2 * 3);             // heuristics x shapes x seeds
+  EXPECT_EQ(city, 2u * 3 * 2 * 3);         // sizes x heuristics x shapes x seeds
+  EXPECT_EQ(incremental, (1u + 1) * 2 * 2);  // (random-disjoint at 1000 + the mesh) x shapes x seeds
+  EXPECT_EQ(kinds["merge"], 2u);           // one pair, heuristic, size and seed; two operations
+  EXPECT_EQ(kinds["occlude"], 1u);
 }
