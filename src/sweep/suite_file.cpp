@@ -254,7 +254,10 @@ class SuiteParser {
                           const std::string& owner, bool generator) const {
     expect(j, j.is_object(), path, "an object");
     ParamAssignments out;
-    for (const auto& [key, value] : j.items()) {
+    // Named, not structured bindings: clang before 16 cannot capture those (the fuzz build uses clang 14).
+    for (const auto& item : j.items()) {
+      const std::string& key = item.key();
+      const json& value = item.value();
       const std::string p = child(path, key);
       if (generator && key == "n") fail(p, "a scene's size comes from \"sizes\" (or \"scene_sizes\")");
       if (generator && key == "seed") fail(p, "a scene's seed comes from \"seeds\"");
@@ -455,7 +458,9 @@ class SuiteParser {
       const std::string sp = child(path, "scene_sizes");
       expect(*ss, ss->is_object(), sp, "an object");
       if (ss->empty()) fail(sp, "empty object (leave \"scene_sizes\" out)");
-      for (const auto& [name, list] : ss->items()) {
+      for (const auto& item : ss->items()) {
+        const std::string& name = item.key();
+        const json& list = item.value();
         const std::string p = child(sp, name);
         const GeneratorInfo& g = at(p, [&]() -> const GeneratorInfo& { return find_generator(name); });
         if (std::find(sized.begin(), sized.end(), &g) == sized.end())
