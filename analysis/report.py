@@ -52,6 +52,12 @@ import matplotlib
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 
+import compare  # noqa: E402  (this script's own modules, beside it)
+import cost_model  # noqa: E402
+import theory  # noqa: E402
+import verdicts  # noqa: E402
+from tables import EXTENSIONS, Cell, Table  # noqa: E402
+
 SCHEMA = "bspbench-report"
 # Version 5 only added doom runs, so a version 4 report reads as one without them.
 VERSIONS = (4, 5)
@@ -133,31 +139,32 @@ def non_dominated(rows):
     return {name for name, v in rows if not any(beats(w, v) for other, w in rows if other != name)}
 
 
+MARKERS = "osD^vP*Xh<>p"
+
+
 def plot_pareto(scene, aggs, path):
+    """One marker per label, named in a legend beside the axes (names written at the points overlap
+    where heuristics agree); the Pareto set is ringed in red and starred in the legend."""
     axes, rows = pareto_rows(aggs)
     front = non_dominated(rows)
-    fig, ax = plt.subplots(figsize=(7, 5))
-    xs = [v[0] for _, v in rows]
-    ys = [v[1] for _, v in rows]
-    colour = [v[2] for _, v in rows] if len(axes) == 3 else None
-    # 2D scenes have no E_line: plain points then (a colour map without colours only warns).
-    points = ax.scatter(xs, ys, c=colour, cmap="viridis" if colour is not None else None, s=60, zorder=2)
-    if colour is not None:
-        fig.colorbar(points, ax=ax, label=axes[2] + " (mean)")
-    for (name, v), x, y in zip(rows, xs, ys):
+    fig, ax = plt.subplots(figsize=(9, 5))
+    colours = plt.get_cmap("tab20")
+    for i, (name, v) in enumerate(sorted(rows)):
         on_front = name in front
+        extra = f", {axes[2]} {v[2]:.3g}" if len(axes) == 3 else ""
+        ax.scatter([v[0]], [v[1]], s=60, color=colours(i % 20), marker=MARKERS[i % len(MARKERS)], zorder=2,
+                   label=("★ " if on_front else "") + name + extra)
         if on_front:
-            ax.scatter([x], [y], s=200, facecolors="none", edgecolors="red", linewidths=1.5, zorder=3)
-        ax.annotate(name, (x, y), textcoords="offset points", xytext=(6, 4), fontsize=8,
-                    fontweight="bold" if on_front else "normal")
+            ax.scatter([v[0]], [v[1]], s=220, facecolors="none", edgecolors="red", linewidths=1.5, zorder=3)
     sizes = sorted({g["by_n"][-1]["n"] for g in aggs if g["by_n"]})
     ax.set_xscale("log")
-    ax.margins(x=0.2, y=0.1)  # room for the names of the outermost points
+    ax.margins(x=0.1, y=0.1)
     ax.set_xlabel(axes[0] + " (mean over seeds)")
     ax.set_ylabel(axes[1] + " (mean over seeds)")
-    ax.set_title(f"{scene}, n = {', '.join(map(str, sizes))}: red rings = not beaten on all of "
+    ax.set_title(f"{scene}, n = {', '.join(map(str, sizes))}: ★ and red rings = not beaten on all of "
                  + ", ".join(axes), fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
     plt.close(fig)
@@ -171,7 +178,8 @@ def growth_text(agg, section, field):
 
 
 def plot_scaling(scene, aggs, path):
-    fig, axes = plt.subplots(1, len(SCALING_AXES), figsize=(12, 4.5))
+    """Both panels share one legend below them, so no legend covers a line."""
+    fig, axes = plt.subplots(1, len(SCALING_AXES), figsize=(12, 5.5))
     for ax, (section, field, title) in zip(axes, SCALING_AXES):
         for agg in aggs:
             pts = [(e["n_polygons"]["mean"], mean_of(e, section, field)) for e in agg["by_n"]]
@@ -185,7 +193,7 @@ def plot_scaling(scene, aggs, path):
         ax.set_title(f"{scene}: {title} against n, log-log", fontsize=9)
         ax.grid(True, which="both", alpha=0.3)
         if ax.lines:
-            ax.legend(fontsize=7)
+            ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=2, frameon=False)
     fig.tight_layout()
     fig.savefig(path, dpi=DPI)
     plt.close(fig)
@@ -202,17 +210,51 @@ def cell(summary):
     return html.escape(text)
 
 
-def metric_table(aggs):
-    names = sorted({(s, k) for g in aggs for e in g["by_n"] for s in ("metrics", "timings") for k in e[s]})
-    head = "".join(f"<th>{html.escape(k)}</th>" for _, k in names)
-    rows = []
-    for g in aggs:
-        for e in g["by_n"]:
-            cells = "".join(f"<td>{cell(e[s].get(k))}</td>" for s, k in names)
-            rows.append(f"<tr><td>{html.escape(g['label'])}</td><td>{e['n']}</td><td>{e['runs']}</td>"
-                        f"<td>{e['validation_violations']}</td>{cells}</tr>")
-    return ("<div class=scroll><table><tr><th>heuristic</th><th>n</th><th>runs</th><th>validation violations</th>"
-            + head + "</tr>" + "".join(rows) + "</table></div>")
+def load_metric_docs():
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "metric_docs.json")
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
+METRIC_DOCS = load_metric_docs()
+
+
+def doc_of(key):
+    return METRIC_DOCS["metrics"].get(key, {"group": "other", "unit": "", "better": "", "meaning": ""})
+
+
+def metric_tables(scene, aggs, command):
+    """One table per metric group (size, shape, expected cost, measured cost, time), units in the
+    headers; metrics without documentation (other run kinds) go to a last table."""
+    keys = sorted({(s, k) for g in aggs for e in g["by_n"] for s in ("metrics", "timings") for k in e[s]})
+    order = METRIC_DOCS["groups"] + ["other"]
+    tables = []
+    for group in order:
+        if group == "settings":
+            continue
+        cols = [(s, k) for s, k in keys if doc_of(k)["group"] == group]
+        if not cols:
+            continue
+        rows = []
+        for g in aggs:
+            for e in g["by_n"]:
+                rows.append([g["label"], e["n"], e["runs"]] +
+                            [Cell(e[s][k]["mean"], cell(e[s].get(k))) if e[s].get(k) else None for s, k in cols])
+        tables.append(Table(f"metrics-{slug(scene)}-{slug(group)}", f"{scene}: {group}",
+                            [("heuristic", ""), ("n", ""), ("runs", "")] + [(k, doc_of(k)["unit"]) for _, k in cols],
+                            rows, command))
+    return tables
+
+
+def glossary():
+    """The metrics' meanings, once, grouped as the tables are."""
+    rows = "".join(
+        f"<tr><td>{html.escape(d['group'])}</td><td style='text-align:left'><code>{html.escape(k)}</code></td>"
+        f"<td>{html.escape(d['unit'])}</td><td>{html.escape(d['better'] or '—')}</td>"
+        f"<td style='text-align:left'>{html.escape(d['meaning'])}</td></tr>"
+        for g in METRIC_DOCS["groups"] for k, d in METRIC_DOCS["metrics"].items() if d["group"] == g)
+    return ("<h2 id='glossary'>What the metrics mean</h2><table><tr><th>group</th><th>metric</th><th>unit</th>"
+            f"<th>better</th><th>meaning</th></tr>{rows}</table>")
 
 
 def growth_table(aggs):
@@ -264,8 +306,14 @@ def summary_table(summary):
 
 def header(report):
     suite = report["suite"]
+    source = suite.get("source")
+    text = ""
+    if isinstance(source, dict):
+        text = (f"<details><summary>suite file {html.escape(str(source.get('path', '')))} "
+                f"({html.escape(str(source.get('hash', '')))})</summary>"
+                f"<pre>{html.escape(str(source.get('text', '')))}</pre></details>")
     return (f"<h1>bspbench report: suite {html.escape(suite['name'])}</h1>"
-            f"<p>definition {html.escape(suite['definition_hash'])}, {suite['jobs']} jobs</p>"
+            f"<p>definition {html.escape(suite['definition_hash'])}, {suite['jobs']} jobs</p>{text}"
             f"{summary_table(report.get('summary', {}))}<h3>Environment</h3>{environment_table(report)}"
             "<p>Intervals are 95% Student-t intervals over seeds (± half-width). Growth exponents k fit "
             "y = c·n^k by least squares on log-log axes over every run.</p>")
@@ -273,18 +321,26 @@ def header(report):
 
 STYLE = ("<style>body{font-family:sans-serif;margin:1em 2em}table{border-collapse:collapse;font-size:12px}"
          "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}th{background:#eee}"
-         ".scroll{overflow-x:auto}img{max-width:100%}</style>")
+         ".scroll{overflow-x:auto}img{max-width:100%}.alert{border:2px solid #c00;background:#fee;padding:4px 12px}"
+         ".ok{border:1px solid #393;background:#efe;padding:4px 12px}.note{font-size:12px;color:#444}"
+         ".cmd{font-size:12px}</style>")
 
 
-def scene_section(scene, aggs, out_dir, how):
+def scene_section(scene, aggs, out_dir, how, command, exported):
     pareto_png, scaling_png = f"pareto-{slug(scene)}.png", f"scaling-{slug(scene)}.png"
     axes, _, front = plot_pareto(scene, aggs, os.path.join(out_dir, pareto_png))
     plot_scaling(scene, aggs, os.path.join(out_dir, scaling_png))
+    tables = metric_tables(scene, aggs, command)
+    exported += tables
+    grouped = "".join(f"<h4>{html.escape(t.title.split(': ', 1)[1])}</h4>" + t.html(scroll=True) for t in tables)
     return (f"<h2 id='{slug(scene)}'>{html.escape(scene)}</h2>{how}"
-            f"<p>Not beaten on all of {', '.join(axes)}: <b>{html.escape(', '.join(sorted(front)))}</b></p>"
+            f"<p>Not beaten on all of {', '.join(axes)} at n = {max(g['by_n'][-1]['n'] for g in aggs if g['by_n'])}: "
+            f"<b>{html.escape(', '.join(sorted(front)))}</b> (every size: <a href='#verdicts-{slug(scene)}'>verdicts</a>)</p>"
             f"<img src='{pareto_png}' alt='Pareto view for {html.escape(scene)}'>"
             f"<img src='{scaling_png}' alt='log-log scaling for {html.escape(scene)}'>"
-            f"<h3>Growth</h3>{growth_table(aggs)}<h3>Every metric</h3>{metric_table(aggs)}")
+            f"<h3>Growth</h3>{growth_table(aggs)}<h3>Every metric, by group</h3>"
+            f"<p>Mean ± half the 95% interval over seeds; units in the headers; meanings in "
+            f"<a href='#glossary'>the glossary</a>.</p>{grouped}")
 
 
 OPERATIONS = ("union", "intersection", "difference", "xor")
@@ -632,16 +688,26 @@ def occlusion_section(report, out_dir, how):
     return "<li><a href='#occlusion'>occlusion culling</a></li>", "".join(parts)
 
 
+def sweep_command(report, source):
+    suite, shards = report["suite"]["name"], len(report["shards"])
+    source_file = report["suite"].get("source")
+    if isinstance(source_file, dict) and source_file.get("path"):
+        suite = source_file["path"]  # a user's suite file; its text is in the report (suite.source)
+    if shards > 1:
+        return (f"bspbench sweep --suite {suite} --shard I/{shards} --out shard-I.json (I = 0 to {shards - 1}); "
+                f"bspbench merge-reports --out {source} shard-*.json")
+    return f"bspbench sweep --suite {suite} --out {source}"
+
+
+def command_text(report, source, out_dir, extra=""):
+    """The commands that remake a table or plot: the sweep, then this page."""
+    return f"{sweep_command(report, source)}; bspbench report --in {source} --out {out_dir}{extra}"
+
+
 def reproduce(report, source, out_dir):
     """The commands that remake a section's tables and plots: the sweep (as shards merged, when it
     ran so) and this page."""
-    suite, shards = report["suite"]["name"], len(report["shards"])
-    if shards > 1:
-        sweep = (f"bspbench sweep --suite {suite} --shard I/{shards} --out shard-I.json (I = 0 to {shards - 1}); "
-                 f"bspbench merge-reports --out {source} shard-*.json")
-    else:
-        sweep = f"bspbench sweep --suite {suite} --out {source}"
-    return (f"<p class=cmd>Reproduce: <code>{html.escape(sweep)}</code>, then "
+    return (f"<p class=cmd>Reproduce: <code>{html.escape(sweep_command(report, source))}</code>, then "
             f"<code>{html.escape(f'bspbench report --in {source} --out {out_dir}')}</code></p>")
 
 
@@ -1053,26 +1119,127 @@ def doom_section(report, out_dir, how):
     return "<li><a href='#doom'>Doom maps</a></li>", "".join(parts)
 
 
+def verdict_section(report, command, exported):
+    found = verdicts.all_verdicts(report)
+    if not found:
+        return "", ""
+    family = sum(len(items) for items in found.values())
+    units = {k: d["unit"] for k, d in METRIC_DOCS["metrics"].items()}
+    units["merge_cpu_seconds"] = "s"
+    report_groups = verdicts.groups(report)
+    significant = sum(v["significant"] for items in found.values() for _, _, v in items)
+    parts = [f"<h2 id='verdicts'>Who wins where</h2><p>{family} comparisons (best against runner-up, per scene, "
+             f"size and metric), {significant} significant after Holm's correction. Merge runs appear as their solid "
+             "pair and operation.</p>"]
+    for scene in sorted({s for s, _ in found}):
+        t = verdicts.scene_table(scene, found, units, command, family)
+        exported.append(t)
+        parts.append(f"<h3 id='verdicts-{slug(scene)}'>{html.escape(scene)}</h3>"
+                     f"<p>{html.escape(verdicts.pareto_sentences(scene, report_groups))}</p>{t.html(scroll=True)}")
+    return "<li><a href='#verdicts'>who wins where (verdicts)</a></li>", "".join(parts)
+
+
+def cost_model_section(report, out_dir, command, exported):
+    rows = cost_model.correlations(report)
+    if not rows:
+        return "", ""
+    t = cost_model.table(rows, command)
+    exported.append(t)
+    medians = []
+    for model, measured, what in cost_model.PAIRINGS:
+        rhos = [r[5] for r in rows if r[2] == model and r[3] == measured]
+        if rhos:
+            medians.append(f"{model} against {what}: median ρ {statistics.median(rhos):.2f} over {len(rhos)} "
+                           "scene–size groups")
+    plots = ""
+    by_scene = {}
+    for (scene, n), runs in cost_model.groups(report).items():
+        by_scene.setdefault(scene, {})[n] = runs
+    for scene, sizes in by_scene.items():
+        if not any(r[0] == scene for r in rows):
+            continue
+        png = f"costmodel-{slug(scene)}.png"
+        cost_model.plot_scene(scene, sizes, os.path.join(out_dir, png))
+        plots += f"<img src='{png}' alt='expected against measured costs for {html.escape(scene)}'>"
+    body = (f"<h2 id='costmodel'>Does the cost model predict?</h2><p>{'; '.join(medians)}.</p>"
+            + cost_model.failing_text(rows, cost_model.scene_traits(report)) + t.html(scroll=True)
+            + f"<h3>Scatter plots</h3><p class=cmd>Remake: <code>{html.escape(command)}</code></p>{plots}")
+    return "<li><a href='#costmodel'>does the cost model predict?</a></li>", body
+
+
+def theory_section(report, command, exported):
+    rows, contradictions, disagreements = theory.analyse(report)
+    if not rows:
+        return "", "", ""
+    t = theory.table(rows, command)
+    exported.append(t)
+    bounds = "".join(f"<li><b>{html.escape(scene)}</b>: {html.escape(b[3])}"
+                     + (f" (heuristics: {', '.join(b[0])})" if b[0] else " (every heuristic)") + "</li>"
+                     for scene, b in theory.BOUNDS.items())
+    body = (f"<h2 id='theory'>Does the theory hold?</h2><p>The bounds checked:</p><ul>{bounds}</ul>"
+            "<p>Exponents are fitted to splits (fragments − n): the bounds are about the fragments a partition "
+            "adds, and the linear n bends a short log-log range. An O(n log n) bound is met by exponents up to its "
+            "local slope 1 + 1/ln n at the sizes fitted. An explicit bound (n + 2n ln n) is checked size by size.</p>"
+            + t.html(scroll=True))
+    return "<li><a href='#theory'>does the theory hold?</a></li>", body, theory.top_list(contradictions, disagreements)
+
+
+def write_exports(tables, out_dir, fmt):
+    folder = os.path.join(out_dir, "tables")
+    os.makedirs(folder, exist_ok=True)
+    for t in tables:
+        path = os.path.join(folder, f"{slug(t.name)}.{EXTENSIONS[fmt]}")
+        with open(path + ".tmp", "w", encoding="utf-8") as f:
+            f.write(t.render(fmt))
+        os.replace(path + ".tmp", path)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--in", dest="input", required=True)
     parser.add_argument("--out", required=True)
+    parser.add_argument("--baseline", help="an earlier report of the same suite")
+    parser.add_argument("--comparison", help="the regression gate's comparison of --baseline and --in (JSON)")
+    parser.add_argument("--format", choices=sorted(EXTENSIONS), help="also export the tables into OUT/tables")
     args = parser.parse_args()
     report = load(args.input)
+    baseline = load(args.baseline) if args.baseline else None
+    if baseline is not None and not args.comparison:
+        fail("--baseline needs --comparison (bspbench report --baseline writes it)")
     try:
         os.makedirs(args.out, exist_ok=True)
     except OSError as e:
         fail(f"{args.out}: cannot create the output directory ({e})")
+    extra = f" --format {args.format}" if args.format else ""
+    command = command_text(report, args.input, args.out, extra)
+    exported = []
+    top, toc, body = "", "", ""
+    if baseline is not None:
+        changes, tables = compare.section(args.baseline, baseline, report, args.comparison,
+                                          command + f" --baseline {args.baseline}")
+        exported += tables
+        toc += "<li><a href='#changes'>changes against the baseline</a></li>"
+        top += changes
+    more_toc, more_body = verdict_section(report, command, exported)
+    toc, body = toc + more_toc, body + more_body
+    more_toc, more_body = cost_model_section(report, args.out, command, exported)
+    toc, body = toc + more_toc, body + more_body
+    more_toc, more_body, contradictions = theory_section(report, command, exported)
+    toc, body = toc + more_toc, body + more_body
+    toc += "<li><a href='#glossary'>what the metrics mean</a></li>"
+    body += glossary()
     scenes = by_scene(report)
-    toc = "".join(f"<li><a href='#{slug(s)}'>{html.escape(s)}</a></li>" for s in scenes)
+    toc += "".join(f"<li><a href='#{slug(s)}'>{html.escape(s)}</a></li>" for s in scenes)
     how = reproduce(report, args.input, args.out)
-    body = "".join(scene_section(s, aggs, args.out, how) for s, aggs in scenes.items())
+    body += "".join(scene_section(s, aggs, args.out, how, command, exported) for s, aggs in scenes.items())
     for section in (merge_section, dynamic_section, occlusion_section, segments_section, doom_section):
         more_toc, more_body = section(report, args.out, how)
         toc += more_toc
         body += more_body
     page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>bspbench report</title>{STYLE}</head>"
-            f"<body>{header(report)}<ul>{toc}</ul>{body}</body></html>\n")
+            f"<body>{header(report)}{contradictions}{top}<h2>Contents</h2><ul>{toc}</ul>{body}</body></html>\n")
+    if args.format:
+        write_exports(exported, args.out, args.format)
     tmp = os.path.join(args.out, "index.html.tmp")
     with open(tmp, "w", encoding="utf-8") as f:
         f.write(page)

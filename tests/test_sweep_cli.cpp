@@ -113,8 +113,9 @@ TEST_F(SweepCli, ReportRendersEveryLinkedPlotAsAValidPng) {
     const fs::path png = dir_ / "html" / (*it)[1].str();
     EXPECT_TRUE(fs::exists(png) && fs::file_size(png) > 0 && is_png(png)) << png;
   }
-  // A Pareto view and a scaling plot for each of the two scenes, merge time and result sizes for the pair.
-  EXPECT_EQ(images, 6u);
+  // A Pareto view, a scaling plot and a cost-model scatter for each of the two scenes, merge time and
+  // result sizes for the pair.
+  EXPECT_EQ(images, 8u);
   EXPECT_NE(page.find("Set operations: merge cost by heuristic"), std::string::npos);
   EXPECT_NE(page.find("naylor's rank"), std::string::npos);
   // A corrupted image is caught by the check above.

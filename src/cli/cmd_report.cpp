@@ -12,10 +12,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include "cli/commands.h"
 #include "common/errors.h"
+#include "sweep/regress.h"
 #include "sweep/report.h"
 
 namespace bsp::cli {
@@ -54,13 +56,40 @@ int spawn(const std::vector<std::string>& argv) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+// The gate's comparison of the two reports, for the page's "changes" section: written into the
+// output directory (temporary file, then rename) so it is kept beside the page it explains.
+std::string write_comparison(const std::string& baseline, const std::string& current, const std::string& out) {
+  const sweep::RegressResult result =
+      sweep::compare_reports(sweep::read_report(baseline), sweep::read_report(current), sweep::RegressOptions{});
+  fs::create_directories(out);
+  const fs::path path = fs::path(out) / "comparison.json";
+  const fs::path tmp = fs::path(out) / "comparison.json.tmp";
+  {
+    std::ofstream f(tmp);
+    f << sweep::to_json(result).dump(1) << "\n";
+    if (!f) throw InputError(tmp.string() + ": cannot write");
+  }
+  fs::rename(tmp, path);
+  return path.string();
+}
+
 int run(Args& args) {
   const std::string in = args.required("--in");
   const std::string out = args.required("--out");
+  const auto baseline = args.option("--baseline");
+  const auto format = args.option("--format");
   args.finish();
+  if (format && *format != "csv" && *format != "markdown" && *format != "latex")
+    throw UsageError("--format must be csv, markdown or latex, not '" + *format + "'");
   sweep::read_report(in);  // a bad report is reported here, in one line, not as a Python traceback
   const char* python = std::getenv("BSPBENCH_PYTHON");
-  const int status = spawn({python ? python : kDefaultPython, find_script().string(), "--in", in, "--out", out});
+  std::vector<std::string> argv = {python ? python : kDefaultPython, find_script().string(), "--in", in, "--out", out};
+  if (baseline) {
+    const std::string comparison = write_comparison(*baseline, in, out);
+    argv.insert(argv.end(), {"--baseline", *baseline, "--comparison", comparison});
+  }
+  if (format) argv.insert(argv.end(), {"--format", *format});
+  const int status = spawn(argv);
   if (status == 0) std::cout << "report: wrote " << (fs::path(out) / "index.html").string() << "\n";
   return status == 0 ? 0 : status == 2 ? 2 : 1;
 }
@@ -68,9 +97,15 @@ int run(Args& args) {
 }  // namespace
 
 Command report_command() {
-  return {"report", "--in REPORT.json --out DIR",
+  return {"report", "--in REPORT.json --out DIR [--baseline OLD.json] [--format csv|markdown|latex]",
           "render a sweep report as DIR/index.html with plots (runs analysis/report.py)", run,
-          {{"--in REPORT.json", "a report of sweep or merge-reports"}, {"--out DIR", "where index.html and its plots go"}}};
+          {{"--in REPORT.json", "a report of sweep or merge-reports"},
+           {"--out DIR", "where index.html and its plots go"},
+           {"--baseline OLD.json", "an earlier report of the same suite: the page opens with what changed, run group by "
+                                   "run group, deterministic metrics exactly and timings with the regression gate's "
+                                   "test (DIR/comparison.json keeps the gate's findings)"},
+           {"--format F", "also export the verdict, cost-model, theory and metric tables as csv, markdown or latex "
+                          "files into DIR/tables/"}}};
 }
 
 }  // namespace bsp::cli

@@ -143,6 +143,10 @@ void judge_timings(const std::map<std::string, TimingGroup>& groups, const Regre
     result.timing_samples += g.current.size();
     const double ratio = median(g.current) / median(g.baseline);
     const MannWhitney test = mann_whitney_u(g.current, g.baseline);
+    const bool slower = test.p < options.alpha && ratio >= options.time_tolerance;
+    const bool faster = test.p < options.alpha && ratio <= 1 / options.time_tolerance;
+    result.timing_tests.push_back({label, g.field, g.baseline.size(), g.current.size(), ratio, test.p,
+                                   slower ? "slower" : faster ? "faster" : "within"});
     if (!(test.p < options.alpha)) continue;
     const std::string base = "median 1 (" + std::to_string(g.baseline.size()) + " samples)";
     // Appended, not `"x" + string`: GCC 12 warns falsely (-Wrestrict) on that operator+ when inlined.
@@ -186,6 +190,19 @@ void compare_runs(const nlohmann::json& baseline, const nlohmann::json& current,
 
 bool RegressResult::failed() const {
   return std::any_of(changes.begin(), changes.end(), [](const Change& c) { return c.regression; });
+}
+
+nlohmann::json to_json(const RegressResult& result) {
+  nlohmann::json changes = nlohmann::json::array(), timings = nlohmann::json::array();
+  for (const Change& c : result.changes)
+    changes.push_back({{"regression", c.regression}, {"what", c.what}, {"run", c.run}, {"field", c.field},
+                       {"baseline", c.baseline}, {"current", c.current}});
+  for (const TimingTest& t : result.timing_tests)
+    timings.push_back({{"group", t.group}, {"field", t.field}, {"baseline_samples", t.baseline_samples},
+                       {"current_samples", t.current_samples}, {"ratio", t.ratio}, {"p", t.p}, {"verdict", t.verdict}});
+  return {{"changes", changes}, {"timing_tests", timings}, {"runs_compared", result.runs_compared},
+          {"values_compared", result.values_compared}, {"timing_groups", result.timing_groups},
+          {"timing_samples", result.timing_samples}, {"failed", result.failed()}};
 }
 
 RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current,

@@ -55,8 +55,20 @@ struct Change {
   std::string baseline, current;
 };
 
+// One timing group's test, significant or not, for reports that show every group (bspbench report
+// --baseline), not only the gate's findings.
+struct TimingTest {
+  std::string group;  // scene heuristic shape
+  std::string field;
+  std::uint64_t baseline_samples = 0, current_samples = 0;
+  double ratio = 1;  // median current over median baseline, both on the baseline job's scale
+  double p = 1;      // two-sided Mann–Whitney
+  std::string verdict;  // "slower" (fails the gate), "faster", or "within" (not significant or within tolerance)
+};
+
 struct RegressResult {
   std::vector<Change> changes;
+  std::vector<TimingTest> timing_tests;
   std::uint64_t runs_compared = 0;
   std::uint64_t values_compared = 0;
   std::uint64_t timing_groups = 0;   // groups whose build times were tested
@@ -68,6 +80,8 @@ struct RegressResult {
 // Throws UsageError when the tolerance is not > 1 or alpha not in (0, 1).
 RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current,
                               const RegressOptions& options);
+// Every change and timing test as JSON, for the report's comparison section.
+nlohmann::json to_json(const RegressResult& result);
 // Three significant digits: how the gate's tables show numbers.
 std::string number_text(double v);
 // The table of changes, then one summary line.

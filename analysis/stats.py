@@ -1,0 +1,164 @@
+"""The statistics behind the report's verdicts, cost-model correlations and growth exponents.
+
+Standard library only, so the report needs nothing beyond matplotlib. Each function states the
+test or estimator it computes; tests/report/test_stats.py checks them against published tables.
+
+Notation: n values or pairs; df degrees of freedom; p a two-sided p-value.
+"""
+import math
+import random
+import statistics
+
+
+def _beta_continued_fraction(a, b, x):
+    """The continued fraction of the incomplete beta function (modified Lentz), for x < (a+1)/(a+b+2)."""
+    tiny, eps = 1e-300, 1e-15
+    c, d = 1.0, 1.0 - (a + b) * x / (a + 1.0)
+    d = 1.0 / (d if abs(d) > tiny else tiny)
+    h = d
+    for m in range(1, 500):
+        for numerator in (m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m)),
+                          -(a + m) * (a + b + m) * x / ((a + 2 * m) * (a + 2 * m + 1))):
+            d = 1.0 + numerator * d
+            d = 1.0 / (d if abs(d) > tiny else tiny)
+            c = 1.0 + numerator / c
+            c = c if abs(c) > tiny else tiny
+            h *= c * d
+        if abs(c * d - 1.0) < eps:
+            break
+    return h
+
+
+def incomplete_beta(a, b, x):
+    """The regularized incomplete beta function I_x(a, b), x in [0, 1]."""
+    if x <= 0.0:
+        return 0.0
+    if x >= 1.0:
+        return 1.0
+    front = math.exp(math.lgamma(a + b) - math.lgamma(a) - math.lgamma(b) + a * math.log(x) + b * math.log1p(-x))
+    if x < (a + 1.0) / (a + b + 2.0):
+        return front * _beta_continued_fraction(a, b, x) / a
+    return 1.0 - front * _beta_continued_fraction(b, a, 1.0 - x) / b
+
+
+def student_p(t, df):
+    """Two-sided p-value of Student's t with df degrees of freedom."""
+    if math.isinf(t):
+        return 0.0
+    return incomplete_beta(df / 2.0, 0.5, df / (df + t * t))
+
+
+def student_quantile(q, df):
+    """The q quantile (q > 0.5) of Student's t, by bisection on student_p."""
+    lo, hi = 0.0, 1e6
+    target = 2.0 * (1.0 - q)
+    for _ in range(200):
+        mid = (lo + hi) / 2.0
+        if student_p(mid, df) > target:
+            lo = mid
+        else:
+            hi = mid
+    return (lo + hi) / 2.0
+
+
+def paired_t(diffs):
+    """Student's paired t-test of mean(diffs) = 0: (mean difference, p). Needs two or more pairs.
+
+    Identical differences have no spread: p is 0 when they are non-zero (every seed agrees exactly,
+    as deterministic metrics of identical trees do) and 1 when they are all zero.
+    """
+    n = len(diffs)
+    if n < 2:
+        return (diffs[0] if diffs else 0.0), None
+    mean = statistics.fmean(diffs)
+    sd = statistics.stdev(diffs)
+    if sd == 0.0:
+        return mean, (1.0 if mean == 0.0 else 0.0)
+    return mean, student_p(mean / (sd / math.sqrt(n)), n - 1)
+
+
+def holm(pvalues):
+    """Holm's step-down adjustment (Holm 1979) of a family of p-values; None entries stay None.
+
+    Controls the family-wise error rate: reject every hypothesis whose adjusted p is below alpha.
+    """
+    indexed = sorted((p, i) for i, p in enumerate(pvalues) if p is not None)
+    adjusted = list(pvalues)
+    running = 0.0
+    m = len(indexed)
+    for rank, (p, i) in enumerate(indexed):
+        running = max(running, min(1.0, (m - rank) * p))
+        adjusted[i] = running
+    return adjusted
+
+
+def ranks(values):
+    """Ranks from 1, ties given their average rank."""
+    order = sorted(range(len(values)), key=lambda i: values[i])
+    out = [0.0] * len(values)
+    i = 0
+    while i < len(order):
+        j = i
+        while j + 1 < len(order) and values[order[j + 1]] == values[order[i]]:
+            j += 1
+        for k in range(i, j + 1):
+            out[order[k]] = (i + j) / 2.0 + 1.0
+        i = j + 1
+    return out
+
+
+def pearson(x, y):
+    """Pearson's correlation; None when either side has no spread."""
+    mx, my = statistics.fmean(x), statistics.fmean(y)
+    sxy = sum((a - mx) * (b - my) for a, b in zip(x, y))
+    sxx = sum((a - mx) ** 2 for a in x)
+    syy = sum((b - my) ** 2 for b in y)
+    if sxx == 0.0 or syy == 0.0:
+        return None
+    return sxy / math.sqrt(sxx * syy)
+
+
+def spearman(x, y):
+    """Spearman's rank correlation: Pearson's on the average ranks; None without spread."""
+    return pearson(ranks(x), ranks(y))
+
+
+def bootstrap_interval(pairs, statistic, reps=1000, seed=1, level=0.95):
+    """Percentile bootstrap interval of statistic(xs, ys) over pairs resampled with replacement.
+
+    Seeded, so a report renders the same interval every time. Resamples where the statistic is
+    undefined (no spread) are left out; None when fewer than half of them are defined.
+    """
+    rng = random.Random(seed)
+    values = []
+    for _ in range(reps):
+        sample = [pairs[rng.randrange(len(pairs))] for _ in pairs]
+        v = statistic([a for a, _ in sample], [b for _, b in sample])
+        if v is not None:
+            values.append(v)
+    if len(values) < reps // 2:
+        return None
+    values.sort()
+    tail = (1.0 - level) / 2.0
+    return values[int(tail * (len(values) - 1))], values[int(math.ceil((1.0 - tail) * (len(values) - 1)))]
+
+
+def loglog_fit(xs, ys, level=0.95):
+    """Least squares of log y = log c + k log x: (k, (k_lo, k_hi), r2), the t interval on the slope.
+
+    Points with x or y not positive are dropped. None with fewer than three points or one x.
+    """
+    pts = [(math.log(x), math.log(y)) for x, y in zip(xs, ys) if x > 0 and y > 0]
+    if len(pts) < 3 or len({p[0] for p in pts}) < 2:
+        return None
+    lx, ly = [p[0] for p in pts], [p[1] for p in pts]
+    mx, my = statistics.fmean(lx), statistics.fmean(ly)
+    sxx = sum((a - mx) ** 2 for a in lx)
+    k = sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sxx
+    residuals = [b - (my + k * (a - mx)) for a, b in zip(lx, ly)]
+    sse = sum(r * r for r in residuals)
+    syy = sum((b - my) ** 2 for b in ly)
+    r2 = 1.0 - sse / syy if syy > 0 else 1.0
+    df = len(pts) - 2
+    half = student_quantile(0.5 + level / 2.0, df) * math.sqrt(sse / df / sxx) if df > 0 else float("inf")
+    return k, (k - half, k + half), r2

@@ -1,0 +1,158 @@
+"""Who wins where: per scene and size, the best heuristic on each metric, its margin over the
+runner-up, and whether the margin is real.
+
+The test: seed s of every heuristic builds the same scene instance, so the two heuristics' values
+are paired by seed and compared with Student's paired t-test, two-sided. The p-values of every
+comparison in the report form one family, adjusted by Holm's step-down method, so "significant"
+(adjusted p < ALPHA) holds for all verdicts of the page at once, not one by one. A metric on which
+best and runner-up have equal means is a tie and names both; one seed gives no test.
+
+Pareto: the labels no other label beats on all of (fragments, max_depth, e_line) at once, each
+lower-is-better, on the means over seeds.
+
+Notation: label = heuristic (with its shape when not strict); group = one scene at one size.
+"""
+import statistics
+
+import stats
+from tables import Cell, Table
+
+ALPHA = 0.05
+# (section, key, what the reader calls it); lower is better for each.
+VERDICT_METRICS = (
+    ("metrics", "fragments", "fragments"),
+    ("metrics", "max_depth", "depth"),
+    ("metrics", "e_point", "E_point"),
+    ("metrics", "e_line", "E_line"),
+    ("metrics", "culled_nodes_visited", "culled traversal"),
+    ("metrics", "ray_nodes_visited", "ray cost"),
+    ("timings", "build_cpu_seconds", "build time"),
+    ("timings", "merge_cpu_seconds", "merge cost"),
+)
+PARETO_AXES = ("fragments", "max_depth", "e_line")
+
+
+def run_label(rid):
+    return rid["heuristic"] + ("" if rid["shape"] == "strict" else f" ({rid['shape']})")
+
+
+def scene_key(rid):
+    """Drawing runs by scene; merge runs by pair and operation, the merge's own 'scene'."""
+    if rid.get("kind") == "merge":
+        return f"{rid['scene']} {rid['operation']}"
+    return rid["scene"]
+
+
+def groups(report):
+    """(scene key, n) -> label -> seed -> run, for drawing and merge runs."""
+    out = {}
+    for r in report["runs"]:
+        rid = r["id"]
+        if rid.get("kind", "draw") not in ("draw", "merge"):
+            continue
+        out.setdefault((scene_key(rid), rid["n"]), {}).setdefault(run_label(rid), {})[rid["seed"]] = r
+    return dict(sorted(out.items(), key=lambda kv: (kv[0][0], kv[0][1])))
+
+
+def value(run, section, key):
+    v = (run.get(section) or {}).get(key)
+    return v if isinstance(v, (int, float)) and not isinstance(v, bool) else None
+
+
+def per_seed(by_seed, section, key):
+    return {s: v for s, r in by_seed.items() if (v := value(r, section, key)) is not None}
+
+
+def compare(labels, section, key):
+    """The verdict of one metric in one group, before the family's correction."""
+    values = {lab: per_seed(by_seed, section, key) for lab, by_seed in labels.items()}
+    values = {lab: v for lab, v in values.items() if v}
+    if len(values) < 2:
+        return None
+    means = sorted((statistics.fmean(v.values()), lab) for lab, v in values.items())
+    (best_mean, best), (second_mean, second) = means[0], means[1]
+    tied = [lab for m, lab in means if m == best_mean]
+    seeds = sorted(set(values[best]) & set(values[second]))
+    diffs = [values[second][s] - values[best][s] for s in seeds]
+    _, p = stats.paired_t(diffs) if len(diffs) >= 2 else (None, None)
+    return {"best": " = ".join(sorted(tied)) if len(tied) > 1 else best, "best_mean": best_mean,
+            "second": second if len(tied) == 1 else "", "second_mean": second_mean, "pairs": len(seeds),
+            "p": p if len(tied) == 1 else 1.0, "tie": len(tied) > 1}
+
+
+def all_verdicts(report):
+    """(scene, n) -> [(metric name, verdict)], with Holm-adjusted p-values over the whole family."""
+    found = []
+    for (scene, n), labels in groups(report).items():
+        for section, key, name in VERDICT_METRICS:
+            v = compare(labels, section, key)
+            if v is not None:
+                found.append(((scene, n), name, key, v))
+    adjusted = stats.holm([v["p"] for _, _, _, v in found])
+    out = {}
+    for (group, name, key, v), p in zip(found, adjusted):
+        v["p_holm"] = p
+        v["significant"] = p is not None and p < ALPHA and not v["tie"]
+        out.setdefault(group, []).append((name, key, v))
+    return out
+
+
+def pareto_front(labels):
+    rows = []
+    for lab, by_seed in labels.items():
+        means = []
+        for key in PARETO_AXES:
+            v = per_seed(by_seed, "metrics", key)
+            means.append(statistics.fmean(v.values()) if v else None)
+        if None not in means:
+            rows.append((lab, means))
+
+    def beats(a, b):
+        return all(x <= y for x, y in zip(a, b)) and any(x < y for x, y in zip(a, b))
+    return sorted(lab for lab, v in rows if not any(beats(w, v) for other, w in rows if other != lab))
+
+
+def margin_text(v):
+    if v["tie"]:
+        return "tie"
+    if v["best_mean"] == 0:
+        return f"+{v['second_mean']:.3g}"
+    return f"+{100 * (v['second_mean'] / v['best_mean'] - 1):.3g}%"
+
+
+def p_text(v):
+    if v["p_holm"] is None:
+        return "one seed: no test"
+    return f"{v['p_holm']:.2g}"
+
+
+def scene_table(scene, verdicts, units, command, family):
+    """Rows (n, metric) for one scene."""
+    rows = []
+    for (s, n), items in verdicts.items():
+        if s != scene:
+            continue
+        for name, key, v in items:
+            rows.append([n, f"{name} ({units.get(key, '')})" if units.get(key) else name,
+                         Cell(v["best"], bold=v["significant"]), v["best_mean"], v["second"] or "—",
+                         v["second_mean"] if v["second"] else None, Cell(margin_text(v)), Cell(p_text(v)),
+                         v["significant"]])
+    return Table(f"verdicts-{scene}", f"Verdicts for {scene}: the best label per metric and size",
+                 [("n", ""), ("metric", ""), ("best", ""), ("its mean", ""), ("runner-up", ""), ("its mean", ""),
+                  ("runner-up's excess", ""), ("p (paired t, Holm)", ""), ("significant", "")],
+                 rows, command,
+                 "Lower is better on every metric. Bold: the best is significantly better than the runner-up "
+                 f"(paired t-test over seeds, Holm-adjusted over all {family} comparisons of this report, α = {ALPHA}).")
+
+
+def pareto_sentences(scene, report_groups):
+    parts = []
+    for (s, n), labels in report_groups.items():
+        if s == scene:
+            front = pareto_front(labels)
+            if front:
+                parts.append(f"n = {n}: {', '.join(front)}")
+    if not parts:
+        return ""
+    return ("Not beaten on all of fragments, depth and E_line at once (the Pareto set, means over seeds) — "
+            + "; ".join(parts) + ".")

@@ -1,0 +1,171 @@
+"""The report's statistics and research sections on data whose answer is known (analysis/*.py).
+
+Run: /usr/bin/python3 -m unittest discover -s tests/report -p 'test_*.py' (ctest: report_analysis).
+Each test also shows its check can fail: the same code on data with the opposite answer.
+"""
+import math
+import os
+import random
+import sys
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "analysis"))
+
+import cost_model  # noqa: E402
+import stats  # noqa: E402
+import tables  # noqa: E402
+import theory  # noqa: E402
+import verdicts  # noqa: E402
+
+
+def draw_run(scene, heuristic, n, seed, metrics, shape="strict", timings=None):
+    return {"id": {"kind": "draw", "scene": scene, "heuristic": heuristic, "shape": shape, "n": n,
+                   "n_polygons": n, "seed": seed},
+            "metrics": metrics, "timings": timings or {}}
+
+
+class Statistics(unittest.TestCase):
+    def test_student_t_matches_tables(self):
+        self.assertAlmostEqual(stats.student_quantile(0.975, 1), 12.7062, places=3)
+        self.assertAlmostEqual(stats.student_quantile(0.975, 4), 2.7764, places=3)
+        self.assertAlmostEqual(stats.student_quantile(0.975, 30), 2.0423, places=3)
+        self.assertAlmostEqual(stats.student_p(2.7764451, 4), 0.05, places=5)
+        self.assertAlmostEqual(stats.student_p(1.0, 1), 0.5, places=9)
+
+    def test_paired_t_of_a_textbook_sample(self):
+        # differences 1..5: mean 3, sd sqrt(2.5), t = 3 / (sqrt(2.5)/sqrt(5)) = 4.2426, df 4: p = 0.01324
+        mean, p = stats.paired_t([1, 2, 3, 4, 5])
+        self.assertEqual(mean, 3)
+        self.assertAlmostEqual(p, 0.013236, places=5)
+        self.assertEqual(stats.paired_t([2, 2, 2])[1], 0.0)
+        self.assertEqual(stats.paired_t([0, 0, 0])[1], 1.0)
+        self.assertIsNone(stats.paired_t([1])[1])
+
+    def test_holm_steps_down_and_stays_monotone(self):
+        # sorted 0.01, 0.03, 0.04 of 3: 0.03, max(0.06, ...) = 0.06, max(0.06, 0.04) = 0.06
+        self.assertEqual(stats.holm([0.01, 0.04, 0.03, None]), [0.03, 0.06, 0.06, None])
+        self.assertEqual(stats.holm([0.5, 0.9]), [1.0, 1.0])
+
+    def test_spearman_with_ties_and_without_spread(self):
+        self.assertAlmostEqual(stats.spearman([1, 2, 3, 4], [10, 20, 30, 40]), 1.0)
+        self.assertAlmostEqual(stats.spearman([1, 2, 3, 4], [4, 3, 2, 1]), -1.0)
+        self.assertAlmostEqual(stats.spearman([1, 2, 2, 3], [1, 2, 3, 4]), 0.9486833, places=6)
+        self.assertIsNone(stats.spearman([1, 1, 1], [1, 2, 3]))
+
+    def test_bootstrap_interval_is_seeded_and_holds_the_estimate(self):
+        rng = random.Random(5)
+        xs = [rng.random() for _ in range(40)]
+        pairs = [(x, x + 0.2 * rng.random()) for x in xs]
+        a = stats.bootstrap_interval(pairs, stats.spearman)
+        self.assertEqual(a, stats.bootstrap_interval(pairs, stats.spearman))
+        rho = stats.spearman([x for x, _ in pairs], [y for _, y in pairs])
+        self.assertLessEqual(a[0], rho)
+        self.assertLessEqual(rho, a[1])
+
+    def test_loglog_fit_recovers_an_exponent_and_its_interval_narrows_with_less_noise(self):
+        ns = [100, 200, 400, 800, 1600] * 3
+        exact = stats.loglog_fit(ns, [3 * n ** 1.5 for n in ns])
+        self.assertAlmostEqual(exact[0], 1.5, places=9)
+        rng = random.Random(2)
+        noisy = stats.loglog_fit(ns, [3 * n ** 1.5 * math.exp(rng.gauss(0, 0.2)) for n in ns])
+        self.assertLess(noisy[1][0], noisy[0])
+        self.assertGreater(noisy[1][1], noisy[0])
+        self.assertGreater(noisy[1][1] - noisy[1][0], exact[1][1] - exact[1][0])
+
+
+class Verdicts(unittest.TestCase):
+    def report(self, gap):
+        """Heuristic 'a' beats 'b' on fragments by `gap` per seed (with seed noise shared by both)."""
+        rng = random.Random(1)
+        runs = []
+        for seed in range(1, 6):
+            base = 100 + 10 * rng.random()
+            runs.append(draw_run("s", "a", 100, seed, {"fragments": base}))
+            runs.append(draw_run("s", "b", 100, seed, {"fragments": base + gap[seed - 1]}))
+            runs.append(draw_run("s", "c", 100, seed, {"fragments": base + 50}))
+        return {"runs": runs}
+
+    def test_a_consistent_gap_is_significant_and_noise_is_not(self):
+        found = verdicts.all_verdicts(self.report([3, 4, 2, 3, 5]))[("s", 100)]
+        name, key, v = found[0]
+        self.assertEqual((v["best"], v["second"]), ("a", "b"))
+        self.assertTrue(v["significant"])
+        noise = verdicts.all_verdicts(self.report([3, -4, 2, -3, 1]))[("s", 100)][0][2]
+        self.assertFalse(noise["significant"])
+
+    def test_equal_means_are_a_tie_naming_both(self):
+        v = verdicts.all_verdicts(self.report([0, 0, 0, 0, 0]))[("s", 100)][0][2]
+        self.assertTrue(v["tie"])
+        self.assertEqual(v["best"], "a = b")
+        self.assertFalse(v["significant"])
+
+    def test_pareto_front_keeps_only_the_unbeaten(self):
+        labels = {"a": {1: draw_run("s", "a", 1, 1, {"fragments": 1, "max_depth": 5, "e_line": 3})},
+                  "b": {1: draw_run("s", "b", 1, 1, {"fragments": 2, "max_depth": 4, "e_line": 3})},
+                  "c": {1: draw_run("s", "c", 1, 1, {"fragments": 2, "max_depth": 5, "e_line": 3})}}
+        self.assertEqual(verdicts.pareto_front(labels), ["a", "b"])
+
+
+class CostModel(unittest.TestCase):
+    def report(self, scramble):
+        rng = random.Random(3)
+        runs = []
+        for h in range(8):
+            for seed in range(1, 6):
+                e = 10 + h + rng.random()
+                measured = rng.random() * 20 if scramble else 2 * e
+                runs.append(draw_run("s", f"h{h}", 100, seed, {"e_line": e, "e_point": e, "ray_nodes_visited": measured,
+                                                               "point_plane_tests": measured, "culled_nodes_visited": measured,
+                                                               "fragments": 10, "nodes": 10}))
+        return {"runs": runs}
+
+    def test_a_monotone_measurement_is_predicted_and_a_random_one_fails(self):
+        good = cost_model.correlations(self.report(False))
+        self.assertTrue(all(r[8] == "predicts" for r in good))
+        bad = cost_model.correlations(self.report(True))
+        self.assertTrue(all(r[8] == "fails" for r in bad), [r[5:] for r in bad])
+        self.assertIn("The model fails", cost_model.failing_text(bad, cost_model.scene_traits(self.report(True))))
+        self.assertNotIn("The model fails", cost_model.failing_text(good, {}))
+
+
+class Theory(unittest.TestCase):
+    def report(self, exponent):
+        runs = []
+        for n in (30, 60, 120, 180):
+            for seed in range(1, 4):
+                splits = 0.25 * n ** exponent * (1 + 0.01 * seed)
+                runs.append(draw_run("saddle-grid", "crystal", n, seed,
+                                     {"splits": splits, "fragments": n + splits}, timings={"build_cpu_seconds": 1e-6 * n}))
+        return {"runs": runs}
+
+    def test_quadratic_splits_agree_and_a_slower_growth_is_listed(self):
+        rows, contradictions, disagreements = theory.analyse(self.report(2.0))
+        self.assertEqual(disagreements, [])
+        self.assertEqual(tables.text_of(rows[0][5]), "yes")
+        _, _, disagreements = theory.analyse(self.report(1.5))
+        self.assertEqual(len(disagreements), 1)
+        self.assertIn("saddle-grid, crystal", disagreements[0])
+
+    def test_the_2d_bound_is_contradicted_only_when_exceeded(self):
+        def segments(factor):
+            return {"runs": [draw_run("random-segments", "random", n, s,
+                                      {"fragments": factor * theory.autopartition_bound(n) * (1 + 0.001 * s),
+                                       "splits": 1.0 * n}) for n in (100, 1000) for s in range(1, 4)]}
+        self.assertEqual(theory.analyse(segments(0.5))[1], [])
+        self.assertEqual(len(theory.analyse(segments(1.5))[1]), 2)
+
+
+class Exports(unittest.TestCase):
+    def test_every_format_carries_every_cell(self):
+        t = tables.Table("t", "A & B", [("name", ""), ("value", "s")],
+                         [["x_1", 0.123456789], [tables.Cell("y", bold=True), None]], "cmd")
+        self.assertIn("0.123456789", t.csv())
+        self.assertIn("| **y** |", t.markdown())
+        self.assertIn(r"x\_1", t.latex())
+        self.assertIn(r"\textbf{y}", t.latex())
+        self.assertIn(r"A \& B", t.latex())
+        self.assertIn("<b>y</b>", t.html())
+
+
+if __name__ == "__main__":
+    unittest.main()
