@@ -1,4 +1,4 @@
-"""Does Naylor's cost model predict? Per scene and size, Spearman's rank correlation between an
+"""Does Naylor's cost model predict? Per scene and size, Spearman's rank correlation [Spearman1904] between an
 expected cost [Naylor1993] and the cost measured on the same tree, across every heuristic and seed
 of the group, with a seeded percentile-bootstrap interval over the runs [Efron1979].
 

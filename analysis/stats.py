@@ -62,7 +62,7 @@ def student_quantile(q, df):
 
 
 def paired_t(diffs):
-    """Student's paired t-test of mean(diffs) = 0: (mean difference, p). Needs two or more pairs.
+    """Student's paired t-test [Student1908] of mean(diffs) = 0: (mean difference, p). Needs two or more pairs.
 
     Identical differences have no spread: p is 0 when they are non-zero (every seed agrees exactly,
     as deterministic metrics of identical trees do) and 1 when they are all zero.
@@ -78,7 +78,7 @@ def paired_t(diffs):
 
 
 def holm(pvalues):
-    """Holm's step-down adjustment (Holm 1979) of a family of p-values; None entries stay None.
+    """Holm's step-down adjustment [Holm1979] of a family of p-values; None entries stay None.
 
     Controls the family-wise error rate: reject every hypothesis whose adjusted p is below alpha.
     """
@@ -119,12 +119,12 @@ def pearson(x, y):
 
 
 def spearman(x, y):
-    """Spearman's rank correlation: Pearson's on the average ranks; None without spread."""
+    """Spearman's rank correlation [Spearman1904]: Pearson's on the average ranks; None without spread."""
     return pearson(ranks(x), ranks(y))
 
 
 def bootstrap_interval(pairs, statistic, reps=1000, seed=1, level=0.95):
-    """Percentile bootstrap interval of statistic(xs, ys) over pairs resampled with replacement.
+    """Percentile bootstrap interval [Efron1979] of statistic(xs, ys) over pairs resampled with replacement.
 
     Seeded, so a report renders the same interval every time. Resamples where the statistic is
     undefined (no spread) are left out; None when fewer than half of them are defined.

@@ -2,8 +2,8 @@
 runner-up, and whether the margin is real.
 
 The test: seed s of every heuristic builds the same scene instance, so the two heuristics' values
-are paired by seed and compared with Student's paired t-test, two-sided. The p-values of every
-comparison in the report form one family, adjusted by Holm's step-down method, so "significant"
+are paired by seed and compared with Student's paired t-test [Student1908], two-sided. The p-values of every
+comparison in the report form one family, adjusted by Holm's step-down method [Holm1979], so "significant"
 (adjusted p < ALPHA) holds for all verdicts of the page at once, not one by one. A metric on which
 best and runner-up have equal means is a tie and names both; one seed gives no test.
 
