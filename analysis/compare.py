@@ -1,7 +1,8 @@
 """Two reports of the same suite side by side (bspbench report --baseline OLD.json): per run group,
 what changed.
 
-Deterministic fields come from the runs themselves, matched by job key: a group (scene, label,
+Deterministic fields come from the runs themselves, paired by command (a job key also covers the
+heuristic's resolved parameters, so a changed default would unpair them): a group (scene, label,
 size) is listed when any of its runs changed a metric or its heuristic's parameters, with the
 metric's means over seeds before and after. Values count as equal within the regression gate's
 relative tolerance (kFloatRelative, src/sweep/regress.h), so a last-bit difference of a sum is no
@@ -38,10 +39,10 @@ def param_changes(b, c):
 
 
 def deterministic_rows(baseline, current):
-    base = {r["key"]: r for r in baseline["runs"]}
+    base = {r["id"]["command"]: r for r in baseline["runs"]}
     groups = {}
     for c in current["runs"]:
-        b = base.get(c["key"])
+        b = base.get(c["id"]["command"])
         if b is not None:
             groups.setdefault(group_of(c["id"]), []).append((b, c))
     rows = []

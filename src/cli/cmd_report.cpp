@@ -59,8 +59,10 @@ int spawn(const std::vector<std::string>& argv) {
 // The gate's comparison of the two reports, for the page's "changes" section: written into the
 // output directory (temporary file, then rename) so it is kept beside the page it explains.
 std::string write_comparison(const std::string& baseline, const std::string& current, const std::string& out) {
+  sweep::RegressOptions options;
+  options.match = sweep::RunMatch::Command;  // a changed default parameter pairs its runs, not drops them
   const sweep::RegressResult result =
-      sweep::compare_reports(sweep::read_report(baseline), sweep::read_report(current), sweep::RegressOptions{});
+      sweep::compare_reports(sweep::read_report(baseline), sweep::read_report(current), options);
   fs::create_directories(out);
   const fs::path path = fs::path(out) / "comparison.json";
   const fs::path tmp = fs::path(out) / "comparison.json.tmp";

@@ -159,15 +159,18 @@ void judge_timings(const std::map<std::string, TimingGroup>& groups, const Regre
   }
 }
 
-std::map<std::string, const nlohmann::json*> by_key(const nlohmann::json& records) {
+std::map<std::string, const nlohmann::json*> by_key(const nlohmann::json& records, RunMatch match) {
   std::map<std::string, const nlohmann::json*> out;
-  for (const auto& r : records) out[r["key"].get<std::string>()] = &r;
+  for (const auto& r : records) {
+    const std::string key = match == RunMatch::Command ? r["id"]["command"].get<std::string>() : r["key"].get<std::string>();
+    if (!out.emplace(key, &r).second) throw InputError("two runs of one report share the command " + key);
+  }
   return out;
 }
 
 void compare_runs(const nlohmann::json& baseline, const nlohmann::json& current, const RegressOptions& options,
                   RegressResult& result) {
-  const auto base = by_key(baseline["runs"]), cur = by_key(current["runs"]);
+  const auto base = by_key(baseline["runs"], options.match), cur = by_key(current["runs"], options.match);
   std::map<std::string, TimingGroup> groups;
   for (const auto& [key, b] : base) {
     Comparer cmp{result, run_label((*b)["id"])};

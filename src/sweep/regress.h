@@ -42,9 +42,16 @@ namespace bsp::sweep {
 
 inline constexpr double kFloatRelative = 1e-9;
 
+// How runs of the two reports are paired. The gate pairs by job key, which covers the heuristic's
+// resolved parameters, so a changed default makes the affected runs missing and new. A comparison
+// meant to show such a change (bspbench report --baseline) pairs by the run's command, which names
+// only what the suite sets; commands are unique within a report.
+enum class RunMatch { Key, Command };
+
 struct RegressOptions {
   double time_tolerance = 1.5;  // the slowdown (ratio of medians) that fails a significant group; > 1
   double alpha = 0.05;          // significance level of the Mann–Whitney test; in (0, 1)
+  RunMatch match = RunMatch::Key;
 };
 
 struct Change {
@@ -77,7 +84,8 @@ struct RegressResult {
   bool failed() const;
 };
 
-// Throws UsageError when the tolerance is not > 1 or alpha not in (0, 1).
+// Throws UsageError when the tolerance is not > 1 or alpha not in (0, 1), InputError when runs are
+// matched by command and two runs of one report share a command.
 RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current,
                               const RegressOptions& options);
 // Every change and timing test as JSON, for the report's comparison section.

@@ -89,6 +89,7 @@ bool is_run(const nlohmann::json& r) {
          r["calibration_seconds"].get<double>() > 0 &&
          has(id, "n", &nlohmann::json::is_number_unsigned) && has(id, "n_polygons", &nlohmann::json::is_number) &&
          has(id, "scene_params", &nlohmann::json::is_object) && has_labels(id, false) &&
+         has(id, "command", &nlohmann::json::is_string) &&
          has(r["invariants"], "violations", &nlohmann::json::is_number_unsigned, true) &&
          (validation.is_null() || has(validation, "violations", &nlohmann::json::is_number_unsigned, true));
 }
