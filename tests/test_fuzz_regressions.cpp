@@ -44,7 +44,7 @@ class FuzzFindings : public ::testing::Test {
     const nlohmann::json run = {
         {"key", "k1"},
         {"id", {{"kind", "draw"}, {"scene", "city"}, {"heuristic", "first"}, {"shape", "strict"}, {"n", 10}, {"n_polygons", 10},
-                {"scene_params", nlohmann::json::object()}}},
+                {"scene_params", nlohmann::json::object()}, {"command", "bspbench build --scene city --n 10"}}},
         {"metrics", {{"nodes", 3}}},
         {"invariants", {{"violations", 0}}},
         {"validation", nullptr},
@@ -154,7 +154,7 @@ TEST_F(FuzzFindings, MinimalReportIsAcceptedAndCompared) {
 TEST_F(FuzzFindings, RunWithoutAFieldTheReadersUseIsAnInputError) {
   for (const auto& [section, key] : std::vector<std::pair<std::string, std::string>>{
            {"", "validation"}, {"id", "n_polygons"}, {"id", "scene_params"}, {"id", "scene"}, {"id", "shape"},
-           {"", "calibration_seconds"}, {"id", "kind"}}) {
+           {"", "calibration_seconds"}, {"id", "kind"}, {"id", "command"}}) {
     nlohmann::json r = minimal_report();
     (section.empty() ? r["runs"][0] : r["runs"][0][section]).erase(key);
     EXPECT_THROW(bsp::sweep::read_report(write("no_" + key + ".json", r.dump())), bsp::InputError) << key;

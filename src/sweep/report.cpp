@@ -113,7 +113,7 @@ void check_layout(const nlohmann::json& report, const std::string& path) {
   if (!report["runs"].is_array() || !report["failures"].is_array()) bad("\"runs\" and \"failures\" must be arrays");
   for (const auto& r : report["runs"])
     if (!is_run(r))
-      bad("a run record lacks key, id (kind, scene, heuristic, shape, n, n_polygons, scene_params; a merge run's "
+      bad("a run record lacks key, id (kind, command, scene, heuristic, shape, n, n_polygons, scene_params; a merge run's "
           "operation and two operands; an animate run's strategy, moving and speed; a Doom run's map and "
           "builder_kind), metrics, invariants, validation, timings or calibration_seconds, or one has the wrong type");
   for (const auto& f : report["failures"])
