@@ -132,11 +132,7 @@ def pareto_rows(aggs):
     return axes, rows
 
 
-def non_dominated(rows):
-    """Labels of the rows no other row beats: at most equal on every axis and lower on one."""
-    def beats(a, b):
-        return all(x <= y for x, y in zip(a, b)) and any(x < y for x, y in zip(a, b))
-    return {name for name, v in rows if not any(beats(w, v) for other, w in rows if other != name)}
+non_dominated = verdicts.non_dominated
 
 
 MARKERS = "osD^vP*Xh<>p"

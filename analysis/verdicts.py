@@ -107,9 +107,14 @@ def pareto_front(labels):
         if None not in means:
             rows.append((lab, means))
 
+    return sorted(non_dominated(rows))
+
+
+def non_dominated(rows):
+    """Names of the (name, values) rows no other row beats: at most equal on every axis and lower on one."""
     def beats(a, b):
         return all(x <= y for x, y in zip(a, b)) and any(x < y for x, y in zip(a, b))
-    return sorted(lab for lab, v in rows if not any(beats(w, v) for other, w in rows if other != lab))
+    return {name for name, v in rows if not any(beats(w, v) for other, w in rows if other != name)}
 
 
 def margin_text(v):
