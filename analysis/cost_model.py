@@ -8,6 +8,7 @@ PREDICTS, fails when its upper end is below PREDICTS, and is undecided otherwise
 
 Notation: ρ Spearman's rank correlation; CI its 95% bootstrap interval.
 """
+import html
 import math
 import statistics
 
@@ -111,7 +112,7 @@ def failing_text(rows, traits):
     items = []
     for scene in failing:
         bad = [f"{r[2]} vs {r[4]} at n = {r[1]} (ρ = {r[5]:.2f})" for r in rows if r[0] == scene and r[8] == "fails"]
-        items.append(f"<li><b>{scene}</b>: {'; '.join(bad)}</li>")
+        items.append(f"<li><b>{html.escape(scene)}</b>: {html.escape('; '.join(bad))}</li>")
 
     def median_of(scenes, i):
         vals = [traits[s][i] for s in scenes if traits.get(s) and traits[s][i] is not None]

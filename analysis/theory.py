@@ -21,6 +21,7 @@ of a size's 95% interval over seeds. An exponent whose interval excludes the the
 disagreement, not a contradiction: asymptotic bounds say nothing about a finite range of n, and
 constants and lower-order terms bend short fits; both are listed at the top of the report.
 """
+import html
 import math
 import statistics
 
@@ -97,9 +98,11 @@ def analyse(report):
         if applies(scene, heuristic) and shape != "leafy":
             theory, agrees = judge(scene, points, fs)
             if agrees is False:
-                disagreements.append(f"{scene}, {heuristic} ({shape}): splits grow as n^{fit_text(fs)}, "
-                                     f"theory {theory} ({BOUNDS[scene][3]}; n = {min(p[0] for p in points)} to "
-                                     f"{max(p[0] for p in points)})")
+                disagreements.append((distance(scene, points, fs),
+                                      f"{scene}, {heuristic} ({shape}): splits grow as n^{fit_text(fs)}, "
+                                      f"theory {theory}, off by {distance(scene, points, fs):.2g} "
+                                      f"({BOUNDS[scene][3]}; n = {min(p[0] for p in points)} to "
+                                      f"{max(p[0] for p in points)})"))
             if scene == "random-segments":
                 contradictions += bound_contradictions(scene, heuristic, shape, points)
         rows.append([scene, heuristic + ("" if shape == "strict" else f" ({shape})"),
@@ -107,7 +110,14 @@ def analyse(report):
                                                                                      fit_text(fs)),
                      Cell(theory or "—"), Cell("" if agrees is None else ("yes" if agrees else "no"), bold=agrees is False),
                      Cell(ff[0] if ff else None, fit_text(ff)), Cell(ft[0] if ft else None, fit_text(ft))])
-    return rows, contradictions, disagreements
+    return rows, contradictions, [text for _, text in sorted(disagreements, key=lambda d: -d[0])]
+
+
+def distance(scene, points, f):
+    """How far the exponent's interval lies from the theory's exponent (0 when it holds it)."""
+    target = BOUNDS[scene][2] if BOUNDS[scene][1] == "theta" else nlogn_slope(points)
+    lo, hi = f[1]
+    return max(lo - target, target - hi, 0.0) if BOUNDS[scene][1] == "theta" else max(lo - target, 0.0)
 
 
 def bound_contradictions(scene, heuristic, shape, points):
@@ -143,12 +153,13 @@ def top_list(contradictions, disagreements):
     parts = ["<div class=alert>"]
     if contradictions:
         parts.append(f"<b>Contradictions of an explicit bound ({len(contradictions)}):</b><ul>"
-                     + "".join(f"<li>{c}</li>" for c in contradictions) + "</ul>")
+                     + "".join(f"<li>{html.escape(c)}</li>" for c in contradictions) + "</ul>")
     else:
         parts.append("<b>No run contradicts an explicit bound.</b>")
     if disagreements:
-        parts.append(f"<p><b>Exponents whose interval excludes theory ({len(disagreements)})</b> — asymptotic "
-                     "bounds allow this on a finite range of n; see <a href='#theory'>the theory section</a>:</p><ul>"
-                     + "".join(f"<li>{d}</li>" for d in disagreements) + "</ul>")
+        parts.append(f"<p><b>Exponents whose interval excludes theory ({len(disagreements)}, farthest first)</b> — "
+                     "asymptotic bounds allow this on a finite range of n, where lower-order terms bend the fit; see "
+                     "<a href='#theory'>the theory section</a>:</p><ul>"
+                     + "".join(f"<li>{html.escape(d)}</li>" for d in disagreements) + "</ul>")
     parts.append("</div>")
     return "".join(parts)
