@@ -157,7 +157,7 @@ def plot_pareto(scene, aggs, path):
     ax.margins(x=0.1, y=0.1)
     ax.set_xlabel(axes[0] + " (mean over seeds)")
     ax.set_ylabel(axes[1] + " (mean over seeds)")
-    ax.set_title(f"{scene}, n = {', '.join(map(str, sizes))}: ★ and red rings = not beaten on all of "
+    ax.set_title(f"{scene}, {', '.join(verdicts.size_text(n) for n in sizes)}: ★ and red rings = not beaten on all of "
                  + ", ".join(axes), fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0)
@@ -330,7 +330,8 @@ def scene_section(scene, aggs, out_dir, how, command, exported):
     exported += tables
     grouped = "".join(f"<h4>{html.escape(t.title.split(': ', 1)[1])}</h4>" + t.html(scroll=True) for t in tables)
     return (f"<h2 id='{slug(scene)}'>{html.escape(scene)}</h2>{how}"
-            f"<p>Not beaten on all of {', '.join(axes)} at n = {max(g['by_n'][-1]['n'] for g in aggs if g['by_n'])}: "
+            f"<p>Not beaten on all of {', '.join(axes)} at "
+            f"{verdicts.size_text(max(g['by_n'][-1]['n'] for g in aggs if g['by_n']))}: "
             f"<b>{html.escape(', '.join(sorted(front)))}</b> (every size: <a href='#verdicts-{slug(scene)}'>verdicts</a>)</p>"
             f"<img src='{pareto_png}' alt='Pareto view for {html.escape(scene)}'>"
             f"<img src='{scaling_png}' alt='log-log scaling for {html.escape(scene)}'>"

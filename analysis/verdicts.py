@@ -117,6 +117,11 @@ def non_dominated(rows):
     return {name for name, v in rows if not any(beats(w, v) for other, w in rows if other != name)}
 
 
+def size_text(n):
+    """A mesh scene has no size parameter (n = 0): it is the file as read."""
+    return f"n = {n}" if n else "the file"
+
+
 def margin_text(v):
     if v["tie"]:
         return "tie"
@@ -138,7 +143,7 @@ def scene_table(scene, verdicts, units, command, family):
         if s != scene:
             continue
         for name, key, v in items:
-            rows.append([n, f"{name} ({units.get(key, '')})" if units.get(key) else name,
+            rows.append([n if n else "the file", f"{name} ({units.get(key, '')})" if units.get(key) else name,
                          Cell(v["best"], bold=v["significant"]), v["best_mean"], v["second"] or "—",
                          v["second_mean"] if v["second"] else None, Cell(margin_text(v)), Cell(p_text(v)),
                          v["significant"]])
@@ -156,7 +161,7 @@ def pareto_sentences(scene, report_groups):
         if s == scene:
             front = pareto_front(labels)
             if front:
-                parts.append(f"n = {n}: {', '.join(front)}")
+                parts.append(f"{size_text(n)}: {', '.join(front)}")
     if not parts:
         return ""
     return ("Not beaten on all of fragments, depth and E_line at once (the Pareto set, means over seeds) — "
