@@ -33,20 +33,30 @@ def group_of(rid):
     return (rid.get("kind", "draw"), scene, label, where)
 
 
+def pairing(rid):
+    """How the gate pairs runs for this comparison (command_key in src/sweep/regress.cpp)."""
+    return rid["command"], json.dumps(rid.get("validation_views"))
+
+
+def sort_key(group):
+    kind, scene, label, where = group
+    return kind, scene, label, (0, where, "") if isinstance(where, (int, float)) else (1, 0, str(where))
+
+
 def param_changes(b, c):
     pb, pc = b["id"].get("heuristic_params") or {}, c["id"].get("heuristic_params") or {}
     return [f"{k}: {pb.get(k)} → {pc.get(k)}" for k in sorted(set(pb) | set(pc)) if not same(pb.get(k), pc.get(k))]
 
 
 def deterministic_rows(baseline, current):
-    base = {r["id"]["command"]: r for r in baseline["runs"]}
+    base = {pairing(r["id"]): r for r in baseline["runs"]}
     groups = {}
     for c in current["runs"]:
-        b = base.get(c["id"]["command"])
+        b = base.get(pairing(c["id"]))
         if b is not None:
             groups.setdefault(group_of(c["id"]), []).append((b, c))
     rows = []
-    for g, pairs in sorted(groups.items(), key=lambda kv: tuple(str(x) for x in kv[0])):
+    for g, pairs in sorted(groups.items(), key=lambda kv: sort_key(kv[0])):
         params = sorted({p for b, c in pairs for p in param_changes(b, c)})
         keys = sorted({k for b, c in pairs for k in (c.get("metrics") or {})})
         for k in keys:

@@ -1,6 +1,7 @@
 """Does Naylor's cost model predict? Per scene and size, Spearman's rank correlation [Spearman1904] between an
 expected cost [Naylor1993] and the cost measured on the same tree, across every heuristic and seed
-of the group, with a seeded percentile-bootstrap interval over the runs [Efron1979].
+of the group, with a seeded percentile-bootstrap interval [Efron1979] that resamples whole heuristics (a label's
+runs over seeds and shapes are not independent of each other).
 
 A rank correlation answers the question a user of the model asks: does the tree the model calls
 cheaper measure cheaper? The model predicts a group when the interval's lower end is at least
@@ -15,10 +16,14 @@ import statistics
 import matplotlib.pyplot as plt
 
 import stats
+import verdicts
 from tables import Cell, Table
 
 PREDICTS = 0.8
 BOOTSTRAP_REPS = 1000
+MIN_RUNS = 4  # fewer runs in a group give no rank correlation worth an interval
+# A failing scene's fragments per node count as many when they exceed the others' by this factor.
+MANY_PER_NODE = 1.2
 # (model metric, measured metric, what is measured)
 PAIRINGS = (
     ("e_line", "ray_nodes_visited", "nodes visited per ray"),
@@ -29,12 +34,21 @@ PAIRINGS = (
 
 def groups(report):
     """(scene, n) -> the drawing runs of that scene and size, every heuristic, shape and seed."""
+    name = verdicts.scene_namer(report)
     out = {}
     for r in report["runs"]:
         rid = r["id"]
         if rid.get("kind", "draw") == "draw":
-            out.setdefault((rid["scene"], rid["n"]), []).append(r)
+            out.setdefault((name(rid), rid["n"]), []).append(r)
     return dict(sorted(out.items()))
+
+
+def clusters_of(runs, model, measured):
+    """The runs' (model, measured) pairs, one cluster per heuristic."""
+    by_heuristic = {}
+    for r in runs:
+        by_heuristic.setdefault(r["id"]["heuristic"], []).append(r)
+    return [c for c in (pairs_of(rs, model, measured) for rs in by_heuristic.values()) if c]
 
 
 def pairs_of(runs, model, measured):
@@ -58,12 +72,13 @@ def correlations(report):
     for (scene, n), runs in groups(report).items():
         for model, measured, what in PAIRINGS:
             pairs = pairs_of(runs, model, measured)
-            if len(pairs) < 4:
+            clusters = clusters_of(runs, model, measured)
+            if len(pairs) < MIN_RUNS or len(clusters) < 2:
                 continue
             rho = stats.spearman([a for a, _ in pairs], [b for _, b in pairs])
             if rho is None:
                 continue
-            ci = stats.bootstrap_interval(pairs, stats.spearman, reps=BOOTSTRAP_REPS)
+            ci = stats.bootstrap_interval(clusters, stats.spearman, reps=BOOTSTRAP_REPS)
             out.append((scene, n, model, measured, what, rho, ci, len(pairs), status(ci)))
     return out
 
@@ -77,7 +92,7 @@ def table(rows, command):
                  [("scene", ""), ("n", ""), ("model vs measured", ""), ("ρ", ""), ("CI low", ""), ("CI high", ""),
                   ("runs", ""), ("verdict", "")], body, command,
                  f"Spearman's ρ over every heuristic, shape and seed of a scene and size; 95% percentile bootstrap "
-                 f"interval ({BOOTSTRAP_REPS} resamples of the runs, seeded). Predicts: interval at or above "
+                 f"interval ({BOOTSTRAP_REPS} seeded resamples of whole heuristics). Predicts: interval at or above "
                  f"{PREDICTS}; fails: interval below it.")
 
 
@@ -123,7 +138,7 @@ def failing_text(rows, traits):
     if f_ratio is not None and o_ratio is not None:
         common.append(f"they store {f_ratio:.2f} fragments per node in median against {o_ratio:.2f} in the other "
                       "scenes" + (" — coplanar fragments share a node, which the model counts once while a ray or "
-                                  "a traversal pays for each" if f_ratio > 1.2 * o_ratio else ""))
+                                  "a traversal pays for each" if f_ratio > MANY_PER_NODE * o_ratio else ""))
     if f_spread is not None and o_spread is not None:
         common.append(f"their heuristics' E_line differ by a factor of {f_spread:.2f} (largest over smallest mean) "
                       f"against {o_spread:.2f} elsewhere" + (" — when the model sees the trees as nearly equal, "
@@ -155,7 +170,3 @@ def plot_scene(scene, rows_runs, path):
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     plt.close(fig)
-
-
-def has_data(report):
-    return any(math.isfinite(r[5]) for r in correlations(report))

@@ -1,7 +1,8 @@
 """The statistics behind the report's verdicts, cost-model correlations and growth exponents.
 
 Standard library only, so the report needs nothing beyond matplotlib. Each function states the
-test or estimator it computes; tests/report/test_stats.py checks them against published tables.
+test or estimator it computes; tests/report/test_analysis.py checks them against published tables
+and hand-computed cases.
 
 Notation: n values or pairs; df degrees of freedom; p a two-sided p-value.
 """
@@ -123,8 +124,10 @@ def spearman(x, y):
     return pearson(ranks(x), ranks(y))
 
 
-def bootstrap_interval(pairs, statistic, reps=1000, seed=1, level=0.95):
-    """Percentile bootstrap interval [Efron1979] of statistic(xs, ys) over pairs resampled with replacement.
+def bootstrap_interval(clusters, statistic, reps=1000, seed=1, level=0.95):
+    """Percentile bootstrap interval [Efron1979] of statistic(xs, ys), resampling whole clusters of
+    (x, y) pairs with replacement: pairs that share a cluster (one heuristic's runs over seeds and
+    shapes) are not independent, and resampling them one by one would make the interval too narrow.
 
     Seeded, so a report renders the same interval every time. Resamples where the statistic is
     undefined (no spread) are left out; None when fewer than half of them are defined.
@@ -132,7 +135,7 @@ def bootstrap_interval(pairs, statistic, reps=1000, seed=1, level=0.95):
     rng = random.Random(seed)
     values = []
     for _ in range(reps):
-        sample = [pairs[rng.randrange(len(pairs))] for _ in pairs]
+        sample = [pair for _ in clusters for pair in clusters[rng.randrange(len(clusters))]]
         v = statistic([a for a, _ in sample], [b for _, b in sample])
         if v is not None:
             values.append(v)

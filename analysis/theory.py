@@ -26,6 +26,7 @@ import math
 import statistics
 
 import stats
+import verdicts
 from tables import Cell, Table
 
 # scene -> (heuristics it applies to (empty: all), kind, exponent or None, statement)
@@ -42,26 +43,34 @@ def autopartition_bound(n):
 
 
 def series(report):
-    """(scene, heuristic, shape) -> [(n_polygons, splits, fragments, build CPU s, seed, n)] of drawing runs."""
+    """(scene, heuristic, shape) -> [(n_polygons, splits, fragments, build CPU s, seed, n)] of drawing
+    runs; a generator with several parameter sets in the report gives one scene per set."""
+    name = verdicts.scene_namer(report)
     out = {}
     for r in report["runs"]:
         rid = r["id"]
         if rid.get("kind", "draw") != "draw":
             continue
         m, t = r["metrics"], r.get("timings") or {}
-        out.setdefault((rid["scene"], rid["heuristic"], rid["shape"]), []).append(
+        out.setdefault((name(rid), rid["heuristic"], rid["shape"]), []).append(
             (rid["n_polygons"], m.get("splits"), m.get("fragments"), t.get("build_cpu_seconds"), rid["seed"], rid["n"]))
     return dict(sorted(out.items()))
 
 
 def fit(points, i):
-    pts = [(p[0], p[i]) for p in points if p[i] is not None]
-    return stats.loglog_fit([x for x, _ in pts], [y for _, y in pts])
+    """The log-log fit of field i over the sizes' geometric means: seeds are replicates of one size,
+    not independent points of the curve (pooling them would shrink the interval with every seed)."""
+    by_n = {}
+    for p in points:
+        if p[i] is not None and p[i] > 0 and p[0] > 0:
+            by_n.setdefault(p[0], []).append(math.log(p[i]))
+    ns = sorted(by_n)
+    return stats.loglog_fit(ns, [math.exp(statistics.fmean(by_n[n])) for n in ns])
 
 
 def nlogn_slope(points):
     ns = [p[0] for p in points if p[0] > 1]
-    return 1 + 1 / math.log(math.exp(statistics.fmean(math.log(n) for n in ns)))
+    return 1 + 1 / statistics.fmean(math.log(n) for n in ns)
 
 
 def judge(scene, points, f):
@@ -125,7 +134,8 @@ def bound_contradictions(scene, heuristic, shape, points):
     out = []
     by_n = {}
     for p in points:
-        by_n.setdefault(p[0], []).append(p[2])
+        if p[2] is not None:
+            by_n.setdefault(p[0], []).append(p[2])
     for n, values in sorted(by_n.items()):
         if len(values) < 2:
             continue
@@ -142,8 +152,8 @@ def table(rows, command):
                  [("scene", ""), ("heuristic", ""), ("n", "polygons"), ("splits exponent", ""),
                   ("theory", ""), ("agrees", ""), ("fragments exponent", ""), ("build CPU time exponent", "")],
                  rows, command,
-                 "Least squares of log y against log n over every run (all sizes and seeds), 95% t-interval on the "
-                 "slope. Theory applies to the splits exponent; 'agrees' says whether the interval holds it.")
+                 "Least squares of log y against log n over the sizes' geometric means over seeds, 95% t-interval "
+                 "on the slope. Theory applies to the splits exponent; 'agrees' says whether the interval holds it.")
 
 
 def top_list(contradictions, disagreements):

@@ -5,7 +5,9 @@ The test: seed s of every heuristic builds the same scene instance, so the two h
 are paired by seed and compared with Student's paired t-test [Student1908], two-sided. The p-values of every
 comparison in the report form one family, adjusted by Holm's step-down method [Holm1979], so "significant"
 (adjusted p < ALPHA) holds for all verdicts of the page at once, not one by one. A metric on which
-best and runner-up have equal means is a tie and names both; one seed gives no test.
+best and runner-up have equal means (within FLOAT_RELATIVE) is a tie and names both; one seed gives
+no test. Best and runner-up are chosen by the same means the test then compares, the usual reading
+of a benchmark table; the margin it reports is the observed one.
 
 Pareto: the labels no other label beats on all of (fragments, max_depth, e_line) at once, each
 lower-is-better, on the means over seeds.
@@ -18,6 +20,8 @@ import stats
 from tables import Cell, Table
 
 ALPHA = 0.05
+# Means this close (relative) tie: the regression gate's kFloatRelative (src/sweep/regress.h).
+FLOAT_RELATIVE = 1e-9
 # (section, key, what the reader calls it); lower is better for each.
 VERDICT_METRICS = (
     ("metrics", "fragments", "fragments"),
@@ -36,27 +40,46 @@ def run_label(rid):
     return rid["heuristic"] + ("" if rid["shape"] == "strict" else f" ({rid['shape']})")
 
 
-def scene_key(rid):
-    """Drawing runs by scene; merge runs by pair and operation, the merge's own 'scene'."""
-    if rid.get("kind") == "merge":
-        return f"{rid['scene']} {rid['operation']}"
-    return rid["scene"]
+def scene_params(rid):
+    """The scene's parameters but its size and seed, as text: what makes two scenes of one generator differ."""
+    params = {k: v for k, v in (rid.get("scene_params") or {}).items() if k not in ("n", "seed")}
+    return ",".join(f"{k}={v}" for k, v in sorted(params.items()))
+
+
+def scene_namer(report):
+    """A function from a drawing or merge run's id to its scene's name: the generator, with its
+    parameters when the report has that generator with several parameter sets (a user's suite may)."""
+    sets = {}
+    for r in report["runs"]:
+        rid = r["id"]
+        sets.setdefault(rid["scene"], set()).add(scene_params(rid))
+
+    def name(rid):
+        base = rid["scene"] + (f" [{scene_params(rid)}]" if len(sets.get(rid["scene"], ())) > 1 else "")
+        return f"{base} {rid['operation']}" if rid.get("kind") == "merge" else base
+    return name
 
 
 def groups(report):
-    """(scene key, n) -> label -> seed -> run, for drawing and merge runs."""
+    """(scene name, n) -> label -> seed -> run, for drawing and merge runs."""
+    name = scene_namer(report)
     out = {}
     for r in report["runs"]:
         rid = r["id"]
         if rid.get("kind", "draw") not in ("draw", "merge"):
             continue
-        out.setdefault((scene_key(rid), rid["n"]), {}).setdefault(run_label(rid), {})[rid["seed"]] = r
+        out.setdefault((name(rid), rid["n"]), {}).setdefault(run_label(rid), {})[rid["seed"]] = r
     return dict(sorted(out.items(), key=lambda kv: (kv[0][0], kv[0][1])))
 
 
 def value(run, section, key):
     v = (run.get(section) or {}).get(key)
     return v if isinstance(v, (int, float)) and not isinstance(v, bool) else None
+
+
+def same(a, b):
+    """Equal within the regression gate's FLOAT_RELATIVE: a sum's last bits are no difference."""
+    return abs(a - b) <= FLOAT_RELATIVE * max(abs(a), abs(b))
 
 
 def per_seed(by_seed, section, key):
@@ -71,7 +94,7 @@ def compare(labels, section, key):
         return None
     means = sorted((statistics.fmean(v.values()), lab) for lab, v in values.items())
     (best_mean, best), (second_mean, second) = means[0], means[1]
-    tied = [lab for m, lab in means if m == best_mean]
+    tied = [lab for m, lab in means if same(m, best_mean)]
     seeds = sorted(set(values[best]) & set(values[second]))
     diffs = [values[second][s] - values[best][s] for s in seeds]
     _, p = stats.paired_t(diffs) if len(diffs) >= 2 else (None, None)

@@ -212,6 +212,7 @@ TEST_F(FuzzFindings, PlyAsciiValueTheStreamCannotReadIsAnInputError) {
   expect_mesh_error("word_index.ply", head + vertices + "3 0 p1 2\n", "face 0 has 'p1', not a 32-bit integer");
   expect_mesh_error("word_coordinate.ply", head + "0 0 0\n1 0 0\n0 nan 0\n3 0 1 2\n", "vertex 2 has 'nan', not a real");
   expect_mesh_error("wide_length.ply", head + vertices + "70000 0 1 2\n", "face 0 has '70000', not a 16-bit integer");
+  expect_mesh_error("two_signs.ply", head + vertices + "3 0 +-1 2\n", "face 0 has '+-1', not a 32-bit integer");
   std::ifstream in(std::string(BSPBENCH_SOURCE_DIR) + "/tests/fuzz/corpus/mesh_reader/oom-ply-ascii-unreadable-value",
                    std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

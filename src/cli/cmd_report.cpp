@@ -63,15 +63,17 @@ std::string write_comparison(const std::string& baseline, const std::string& cur
   options.match = sweep::RunMatch::Command;  // a changed default parameter pairs its runs, not drops them
   const sweep::RegressResult result =
       sweep::compare_reports(sweep::read_report(baseline), sweep::read_report(current), options);
-  fs::create_directories(out);
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw InputError(out + ": cannot create the output directory (" + ec.message() + ")");
   const fs::path path = fs::path(out) / "comparison.json";
   const fs::path tmp = fs::path(out) / "comparison.json.tmp";
-  {
-    std::ofstream f(tmp);
-    f << sweep::to_json(result).dump(1) << "\n";
-    if (!f) throw InputError(tmp.string() + ": cannot write");
-  }
-  fs::rename(tmp, path);
+  std::ofstream f(tmp);
+  f << sweep::to_json(result).dump(1) << "\n";
+  f.close();
+  if (!f) throw InputError(tmp.string() + ": cannot write");
+  fs::rename(tmp, path, ec);
+  if (ec) throw InputError(path.string() + ": cannot write (" + ec.message() + ")");
   return path.string();
 }
 

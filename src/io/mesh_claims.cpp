@@ -36,8 +36,13 @@ std::optional<u64> times(u64 a, u64 b) {
   return r;
 }
 
+// An integer as `stream >> long long` reads a whole token: one optional sign, then digits ("+-5"
+// is no integer to the stream, though from_chars would read -5 after a stripped '+').
 std::optional<long long> to_integer(std::string_view t) {
-  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  if (!t.empty() && t.front() == '+') {
+    t.remove_prefix(1);
+    if (!t.empty() && t.front() == '-') return std::nullopt;
+  }
   long long v;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (ec != std::errc() || end != t.data() + t.size()) return std::nullopt;

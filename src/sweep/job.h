@@ -52,8 +52,8 @@ struct DoomParams {
 };
 
 // A drawing job's mesh (a file:PATH or mesh:NAME scene): the file it reads, and the hash of the
-// file's bytes, which takes the place of a generator's resolved parameters in the job's key: a
-// changed file is another run, wherever it lies.
+// file's bytes, which takes the place of a generator's resolved parameters in the job's key beside
+// the scene's label: a changed file is another run, and so is the same file under another label.
 struct SceneFile {
   std::string path;
   std::string hash;  // 16 hex digits

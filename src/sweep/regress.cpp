@@ -159,10 +159,16 @@ void judge_timings(const std::map<std::string, TimingGroup>& groups, const Regre
   }
 }
 
+// A run's command with its validation views, which the command does not name: two blocks of a
+// suite may differ only in those.
+std::string command_key(const nlohmann::json& id) {
+  return id["command"].get<std::string>() + " (views " + id.value("validation_views", nlohmann::json()).dump() + ")";
+}
+
 std::map<std::string, const nlohmann::json*> by_key(const nlohmann::json& records, RunMatch match) {
   std::map<std::string, const nlohmann::json*> out;
   for (const auto& r : records) {
-    const std::string key = match == RunMatch::Command ? r["id"]["command"].get<std::string>() : r["key"].get<std::string>();
+    const std::string key = match == RunMatch::Command ? command_key(r["id"]) : r["key"].get<std::string>();
     if (!out.emplace(key, &r).second) throw InputError("two runs of one report share the command " + key);
   }
   return out;

@@ -45,7 +45,7 @@ inline constexpr double kFloatRelative = 1e-9;
 // How runs of the two reports are paired. The gate pairs by job key, which covers the heuristic's
 // resolved parameters, so a changed default makes the affected runs missing and new. A comparison
 // meant to show such a change (bspbench report --baseline) pairs by the run's command, which names
-// only what the suite sets; commands are unique within a report.
+// only what the suite sets, with its validation views (the one setting a command leaves out).
 enum class RunMatch { Key, Command };
 
 struct RegressOptions {
@@ -85,7 +85,7 @@ struct RegressResult {
 };
 
 // Throws UsageError when the tolerance is not > 1 or alpha not in (0, 1), InputError when runs are
-// matched by command and two runs of one report share a command.
+// matched by command and two runs of one report share a command and views.
 RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current,
                               const RegressOptions& options);
 // Every change and timing test as JSON, for the report's comparison section.

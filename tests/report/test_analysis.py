@@ -52,25 +52,31 @@ class Statistics(unittest.TestCase):
         self.assertAlmostEqual(stats.spearman([1, 2, 2, 3], [1, 2, 3, 4]), 0.9486833, places=6)
         self.assertIsNone(stats.spearman([1, 1, 1], [1, 2, 3]))
 
-    def test_bootstrap_interval_is_seeded_and_holds_the_estimate(self):
-        rng = random.Random(5)
-        xs = [rng.random() for _ in range(40)]
-        pairs = [(x, x + 0.2 * rng.random()) for x in xs]
-        a = stats.bootstrap_interval(pairs, stats.spearman)
-        self.assertEqual(a, stats.bootstrap_interval(pairs, stats.spearman))
-        rho = stats.spearman([x for x, _ in pairs], [y for _, y in pairs])
-        self.assertLessEqual(a[0], rho)
-        self.assertLessEqual(rho, a[1])
+    def test_bootstrap_resamples_whole_clusters_at_known_percentiles(self):
+        # Three clusters of one pair each, x = 1, 2, 3: a resample's mean x is (a + b + c) / 3 over the 27
+        # equally likely draws, whose sums 3..9 have cumulative counts 1, 4, 10, 17, 23, 26, 27. The 25th
+        # and 75th percentiles are therefore 5/3 and 7/3 (a min-max interval would be 1 and 3).
+        def mean_x(xs, ys):
+            return sum(xs) / len(xs)
+        clusters = [[(1, 0)], [(2, 0)], [(3, 0)]]
+        lo, hi = stats.bootstrap_interval(clusters, mean_x, reps=20000, level=0.5)
+        self.assertAlmostEqual(lo, 5 / 3)
+        self.assertAlmostEqual(hi, 7 / 3)
+        self.assertEqual((lo, hi), stats.bootstrap_interval(clusters, mean_x, reps=20000, level=0.5))
+        # Clusters of two identical pairs: the same percentiles, a resample still draws three clusters.
+        doubled = [[(x, 0), (x, 0)] for x in (1, 2, 3)]
+        self.assertAlmostEqual(stats.bootstrap_interval(doubled, mean_x, reps=20000, level=0.5)[0], 5 / 3)
 
-    def test_loglog_fit_recovers_an_exponent_and_its_interval_narrows_with_less_noise(self):
-        ns = [100, 200, 400, 800, 1600] * 3
-        exact = stats.loglog_fit(ns, [3 * n ** 1.5 for n in ns])
-        self.assertAlmostEqual(exact[0], 1.5, places=9)
-        rng = random.Random(2)
-        noisy = stats.loglog_fit(ns, [3 * n ** 1.5 * math.exp(rng.gauss(0, 0.2)) for n in ns])
-        self.assertLess(noisy[1][0], noisy[0])
-        self.assertGreater(noisy[1][1], noisy[0])
-        self.assertGreater(noisy[1][1] - noisy[1][0], exact[1][1] - exact[1][0])
+    def test_loglog_fit_matches_a_hand_computed_slope_and_interval(self):
+        # log x = 0, 1, 2, 3 and log y = 0, 1.1, 1.9, 3.0: slope 4.9 / 5 = 0.98, residuals 0.03, 0.09,
+        # -0.09, 0.03 (SSE 0.018, SYY 4.82), se = sqrt(0.018 / 2 / 5), t(0.975, 2) = 4.302653: half-width
+        # 0.182546.
+        k, (lo, hi), r2 = stats.loglog_fit([math.exp(i) for i in range(4)], [math.exp(v) for v in (0, 1.1, 1.9, 3.0)])
+        self.assertAlmostEqual(k, 0.98, places=9)
+        self.assertAlmostEqual(lo, 0.98 - 0.182546, places=5)
+        self.assertAlmostEqual(hi, 0.98 + 0.182546, places=5)
+        self.assertAlmostEqual(r2, 1 - 0.018 / 4.82, places=9)
+        self.assertIsNone(stats.loglog_fit([10, 10, 10], [1, 2, 3]))
 
 
 class Verdicts(unittest.TestCase):
@@ -98,6 +104,17 @@ class Verdicts(unittest.TestCase):
         self.assertTrue(v["tie"])
         self.assertEqual(v["best"], "a = b")
         self.assertFalse(v["significant"])
+
+    def test_one_generator_with_two_parameter_sets_is_two_scenes(self):
+        def runs(height, fragments):
+            out = [draw_run("city", h, 100, 1, {"fragments": f}) for h, f in zip("ab", fragments)]
+            for r in out:
+                r["id"]["scene_params"] = {"n": 100, "seed": 1, "max_height": height}
+            return out
+        low, tall = runs(6, (1, 2)), runs(12, (9, 2))
+        self.assertEqual(sorted(verdicts.groups({"runs": low + tall})),
+                         [("city [max_height=12]", 100), ("city [max_height=6]", 100)])
+        self.assertEqual(sorted(verdicts.groups({"runs": low})), [("city", 100)])
 
     def test_pareto_front_keeps_only_the_unbeaten(self):
         labels = {"a": {1: draw_run("s", "a", 1, 1, {"fragments": 1, "max_depth": 5, "e_line": 3})},
