@@ -132,20 +132,25 @@ def failing_text(rows, traits):
     def median_of(scenes, i):
         vals = [traits[s][i] for s in scenes if traits.get(s) and traits[s][i] is not None]
         return statistics.median(vals) if vals else None
-    f_ratio, o_ratio = median_of(failing, 0), median_of(others, 0)
-    f_spread, o_spread = median_of(failing, 1), median_of(others, 1)
+
+    def each(i, digits):
+        return ", ".join(f"{s} {traits[s][i]:.{digits}f}" for s in failing if traits.get(s) and traits[s][i] is not None)
+    o_ratio, o_spread = median_of(others, 0), median_of(others, 1)
     common = []
-    if f_ratio is not None and o_ratio is not None:
-        common.append(f"they store {f_ratio:.2f} fragments per node in median against {o_ratio:.2f} in the other "
-                      "scenes" + (" — coplanar fragments share a node, which the model counts once while a ray or "
-                                  "a traversal pays for each" if f_ratio > MANY_PER_NODE * o_ratio else ""))
-    if f_spread is not None and o_spread is not None:
-        common.append(f"their heuristics' E_line differ by a factor of {f_spread:.2f} (largest over smallest mean) "
-                      f"against {o_spread:.2f} elsewhere" + (" — when the model sees the trees as nearly equal, "
-                                                             "the ranking is decided by what it leaves out"
-                                                             if f_spread < o_spread else ""))
+    if o_ratio is not None and each(0, 2):
+        shared = all(traits[s][0] is not None and traits[s][0] > MANY_PER_NODE * o_ratio for s in failing if traits.get(s))
+        common.append(f"fragments per node: {each(0, 2)}, against {o_ratio:.2f} in median elsewhere"
+                      + (" — every one of them stores coplanar fragments together, which the model counts once "
+                         "while a ray or a traversal pays for each" if shared else ""))
+    if o_spread is not None and each(1, 2):
+        narrow = all(traits[s][1] is not None and traits[s][1] < o_spread for s in failing if traits.get(s))
+        common.append(f"how much their heuristics' E_line differ (largest over smallest mean): {each(1, 2)}, against "
+                      f"{o_spread:.2f} in median elsewhere" + (" — where the model sees the trees as nearly equal, "
+                                                                "the ranking is decided by what it leaves out"
+                                                                if narrow else ""))
     return (f"<p><b>The model fails</b> (interval below ρ = {PREDICTS}) on:</p><ul>{''.join(items)}</ul>"
-            + (f"<p>What these scenes have in common, measured: {'; '.join(common)}.</p>" if common else ""))
+            + (f"<p>What sets these scenes apart, measured at their largest size: {html.escape('; '.join(common))}."
+               "</p>" if common else ""))
 
 
 def plot_scene(scene, rows_runs, path):
