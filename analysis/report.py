@@ -311,8 +311,9 @@ def header(report):
     return (f"<h1>bspbench report: suite {html.escape(suite['name'])}</h1>"
             f"<p>definition {html.escape(suite['definition_hash'])}, {suite['jobs']} jobs</p>{text}"
             f"{summary_table(report.get('summary', {}))}<h3>Environment</h3>{environment_table(report)}"
-            "<p>Intervals are 95% Student-t intervals over seeds (± half-width). Growth exponents k fit "
-            "y = c·n^k by least squares on log-log axes over every run.</p>")
+            "<p>Intervals are 95% Student-t intervals over seeds (± half-width). The scene sections' growth "
+            "exponents k fit y = c·n^k by least squares on log-log axes over every run; the theory check fits "
+            "the sizes' geometric means over seeds and gives each exponent its interval.</p>")
 
 
 STYLE = ("<style>body{font-family:sans-serif;margin:1em 2em}table{border-collapse:collapse;font-size:12px}"
