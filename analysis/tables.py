@@ -1,4 +1,5 @@
 """A table the report shows and exports: one definition, four renderings (HTML, CSV, Markdown, LaTeX).
+In the page a table's id is table-NAME, apart from the ids of the headings that link to it.
 
 Cells hold plain values (str, int, float, None) so CSV keeps full precision while the page and the
 paper formats round to four significant digits. A cell may also be a Cell, which adds a rendered
@@ -55,7 +56,7 @@ class Table:
                 t = html.escape(text_of(c))
                 cells.append(f"<td><b>{t}</b></td>" if isinstance(c, Cell) and c.bold else f"<td>{t}</td>")
             body.append("<tr>" + "".join(cells) + "</tr>")
-        table = f"<table id='{html.escape(self.name)}'><tr>{head}</tr>{''.join(body)}</table>"
+        table = f"<table id='table-{html.escape(self.name)}'><tr>{head}</tr>{''.join(body)}</table>"
         if scroll:
             table = f"<div class=scroll>{table}</div>"
         note = f"<p class=note>{html.escape(self.note)}</p>" if self.note else ""

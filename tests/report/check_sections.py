@@ -66,7 +66,7 @@ def main():
             fail(f"the page has no section '{anchor}'")
     if '{"' in page:
         fail("the page holds a raw JSON dump")
-    table = re.search(r"<table id='changes-deterministic'>(.*?)</table>", page, re.S)
+    table = re.search(r"<table id='table-changes-deterministic'>(.*?)</table>", page, re.S)
     if not table:
         fail("no table of deterministic changes")
     rows = re.findall(r"<tr>(.*?)</tr>", table.group(1), re.S)[1:]
@@ -77,7 +77,7 @@ def main():
         fail("the changed parameter is not named")
     if not all("fragments" in r for r in rows):
         fail("a changed group lists a metric other than fragments")
-    timings = re.search(r"<table id='changes-timings'>(.*?)</table>", page, re.S)
+    timings = re.search(r"<table id='table-changes-timings'>(.*?)</table>", page, re.S)
     verdicts = re.findall(r"<td>(?:<b>)?(slower|faster|within)(?:</b>)?</td>", timings.group(1)) if timings else []
     if not verdicts or set(verdicts) != {"within"}:
         fail(f"identical timings should all be 'within', the page says {sorted(set(verdicts))}")
