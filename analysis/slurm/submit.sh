@@ -39,17 +39,24 @@ bspbench=${BSPBENCH:-$repo/build/bspbench}
 [[ -x $bspbench ]] || die "$bspbench: not an executable (build it first: cmake --preset release && cmake --build --preset release)"
 command -v sbatch >/dev/null || die "sbatch not found (is this a Slurm login node?)"
 bspbench=$(realpath "$bspbench")
+# A suite file (bspbench sweep reads --suite as a file when it ends in .json or holds a '/') is
+# passed absolute, so a job that starts in another directory still finds it.
+name=$(basename "$suite" .json)
+if [[ $suite == *.json || $suite == */* ]]; then
+  [[ -f $suite ]] || die "$suite: no such suite file"
+  suite=$(realpath "$suite")
+fi
 # Absolute, since the jobs may start elsewhere; made now, since Slurm does not create the
 # directories of --output.
 mkdir -p "$out/logs"
 out=$(realpath "$out")
 
 # --parsable prints "ID" or "ID;CLUSTER".
-array_id=$(sbatch --parsable --job-name="bspbench-$suite" --array="0-$((shards - 1))" \
+array_id=$(sbatch --parsable --job-name="bspbench-$name" --array="0-$((shards - 1))" \
   --output="$out/logs/shard-%a.out" "${sbatch_options[@]}" \
   "$here/sweep.sbatch" --suite "$suite" --shards "$shards" --out "$out" --bspbench "$bspbench")
 array_id=${array_id%%;*}
-merge_id=$(sbatch --parsable --job-name="bspbench-$suite-merge" --dependency="afterok:$array_id" \
+merge_id=$(sbatch --parsable --job-name="bspbench-$name-merge" --dependency="afterok:$array_id" \
   --output="$out/logs/merge.out" "${sbatch_options[@]}" \
   "$here/merge.sbatch" --shards "$shards" --out "$out" --bspbench "$bspbench")
 merge_id=${merge_id%%;*}
