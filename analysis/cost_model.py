@@ -155,7 +155,7 @@ def failing_text(rows, traits):
 
 def plot_scene(scene, rows_runs, path):
     """One panel per pairing: measured against model, one point per run, coloured by size."""
-    fig, axes = plt.subplots(1, len(PAIRINGS), figsize=(13, 4))
+    fig, axes = plt.subplots(1, len(PAIRINGS), figsize=(13, 4.4))
     sizes = sorted(rows_runs)
     cmap = plt.get_cmap("viridis")
     for ax, (model, measured, what) in zip(axes, PAIRINGS):
@@ -169,9 +169,11 @@ def plot_scene(scene, rows_runs, path):
         ax.set_xlabel(model + " (model)")
         ax.set_ylabel(what + " (measured)")
         ax.grid(True, which="both", alpha=0.3)
-        if ax.collections:
-            ax.legend(fontsize=7, loc="upper left")
+    # One legend of the sizes below the panels, so it covers no point.
+    handles, labels = axes[0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="lower center", ncol=len(handles), fontsize=8)
     fig.suptitle(f"{scene}: Naylor's expected costs against measured costs, every heuristic and seed", fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
     fig.savefig(path, dpi=100)
     plt.close(fig)
