@@ -176,12 +176,14 @@ def growth_text(agg, section, field):
 def plot_scaling(scene, aggs, path):
     """Both panels share one legend below them, so no legend covers a line."""
     fig, axes = plt.subplots(1, len(SCALING_AXES), figsize=(12, 5.5))
+    colours = plt.get_cmap("tab20")  # more labels than the default cycle's 10 colours
     for ax, (section, field, title) in zip(axes, SCALING_AXES):
-        for agg in aggs:
+        for i, agg in enumerate(aggs):
             pts = [(e["n_polygons"]["mean"], mean_of(e, section, field)) for e in agg["by_n"]]
             pts = [(x, y) for x, y in pts if y is not None and x > 0 and y > 0]
             if pts:
-                ax.plot(*zip(*pts), marker="o", label=agg["label"] + growth_text(agg, section, field))
+                ax.plot(*zip(*pts), marker=MARKERS[i % len(MARKERS)], color=colours(i % 20),
+                        label=agg["label"] + growth_text(agg, section, field))
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("polygons (n)")
