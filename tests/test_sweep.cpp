@@ -1050,3 +1050,22 @@ TEST(SweepSuiteFile, SchemaExampleExpandsToWhatItsKeysAsk) {
   EXPECT_EQ(kinds["merge"], 2u);           // one pair, heuristic, size and seed; two operations
   EXPECT_EQ(kinds["occlude"], 1u);
 }
+
+// The report's tables take each drawing run's timings, like its metrics, from
+// analysis/metric_docs.json; a timing added to run_job without its line there would show up
+// unexplained (tests/test_metrics.cpp checks the metrics).
+TEST(SweepRecord, EveryTimingOfADrawingRunIsDocumentedForTheReport) {
+  std::ifstream in(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/metric_docs.json");
+  const nlohmann::json docs = nlohmann::json::parse(in)["metrics"];
+  const auto jobs = expand(find_suite("smoke"));
+  const auto draw = std::find_if(jobs.begin(), jobs.end(), [](const Job& j) { return j.kind() == JobKind::Draw; });
+  ASSERT_NE(draw, jobs.end());
+  const nlohmann::json run = run_job(*draw);
+  std::size_t checked = 0;
+  for (const auto& [key, value] : run["timings"].items()) {
+    if (!value.is_number()) continue;  // the samples behind a median are not shown as a metric
+    EXPECT_TRUE(docs.contains(key)) << key << " is not in metric_docs.json";
+    ++checked;
+  }
+  EXPECT_GE(checked, 4u);
+}
