@@ -15,6 +15,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
+#include <vector>
 
 #include "catalog.h"
 #include "io/mesh_reader.h"
@@ -170,6 +172,24 @@ TEST_F(MeshFiles, StlTrianglesAreReadAndDegenerateOnesDropped) {
   EXPECT_EQ(s.polygons.size(), 2u);
   EXPECT_EQ(s.load.dropped_degenerate + s.load.dropped_duplicate_vertex, 2u);
   EXPECT_NEAR(total_area(s.polygons), 1.0, 1e-12);
+}
+
+// The CGAL reader quiets std::cerr by swapping its buffer; two sweep jobs reading meshes at once
+// restored each other's buffers, one of them destroyed, and the sweep crashed (SweepCli's cached-mesh
+// suite on 2 threads). Many threads reading at once must leave std::cerr's buffer as it was.
+TEST_F(MeshFiles, ConcurrentReadsLeaveStdCerrAsItWas) {
+  const std::string path = write("faces.off", off()).string();
+  std::streambuf* const before = std::cerr.rdbuf();
+  std::vector<std::thread> readers;
+  std::vector<std::size_t> counts(8);
+  for (std::size_t t = 0; t < counts.size(); ++t)
+    readers.emplace_back([&, t] {
+      for (int i = 0; i < 50; ++i) counts[t] = read_mesh(path).polygons.size();
+    });
+  for (auto& r : readers) r.join();
+  EXPECT_EQ(std::cerr.rdbuf(), before);
+  for (std::size_t c : counts) EXPECT_EQ(c, counts[0]);
+  EXPECT_GT(counts[0], 0u);
 }
 
 TEST(EarClipping, NonConvexPolygonKeepsItsAreaAndStaysInsideItsOutline) {

@@ -54,7 +54,9 @@ int run(Args& args) {
   const sweep::Suite suite =
       sweep::names_suite_file(suite_name) ? sweep::load_suite_file(suite_name) : sweep::find_suite(suite_name);
   options.journal_dir = journal_dir.value_or((std::filesystem::path(out).parent_path() / "journal").string());
-  options.log = &std::cerr;
+  // std::clog, not std::cerr: the same stderr, but a stream whose buffer no mesh reader swaps out
+  // while a job reads a file (io/mesh_reader_cgal.cpp quiets CGAL through std::cerr).
+  options.log = &std::clog;
   options.log_is_terminal = ::isatty(STDERR_FILENO) != 0;
   const nlohmann::json report = sweep::run_sweep(suite, options);
   sweep::write_report(out, report);
