@@ -13,17 +13,16 @@ import html
 import json
 import statistics
 
+import stats
+
 from tables import Cell, Table
-
-FLOAT_RELATIVE = 1e-9
-
 
 def same(a, b):
     if isinstance(a, bool) or isinstance(b, bool) or not isinstance(a, (int, float)) or not isinstance(b, (int, float)):
         return a == b
     if isinstance(a, int) and isinstance(b, int):
         return a == b
-    return abs(a - b) <= FLOAT_RELATIVE * max(abs(a), abs(b))
+    return stats.close(a, b)
 
 
 def group_of(rid):

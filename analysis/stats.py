@@ -11,6 +11,16 @@ import random
 import statistics
 
 
+# Two results this close (relative) are equal: the regression gate's kFloatRelative
+# (src/sweep/regress.h), since a sum's last bits may differ between builds of the same tree.
+FLOAT_RELATIVE = 1e-9
+
+
+def close(a, b):
+    """Numbers equal within FLOAT_RELATIVE."""
+    return abs(a - b) <= FLOAT_RELATIVE * max(abs(a), abs(b))
+
+
 def _beta_continued_fraction(a, b, x):
     """The continued fraction of the incomplete beta function (modified Lentz), for x < (a+1)/(a+b+2)."""
     tiny, eps = 1e-300, 1e-15

@@ -5,7 +5,7 @@ The test: seed s of every heuristic builds the same scene instance, so the two h
 are paired by seed and compared with Student's paired t-test [Student1908], two-sided. The p-values of every
 comparison in the report form one family, adjusted by Holm's step-down method [Holm1979], so "significant"
 (adjusted p < ALPHA) holds for all verdicts of the page at once, not one by one. A metric on which
-best and runner-up have equal means (within FLOAT_RELATIVE) is a tie and names both; one seed gives
+best and runner-up have equal means (within stats.FLOAT_RELATIVE) is a tie and names both; one seed gives
 no test. Best and runner-up are chosen by the same means the test then compares, the usual reading
 of a benchmark table; the margin it reports is the observed one.
 
@@ -20,8 +20,6 @@ import stats
 from tables import Cell, Table
 
 ALPHA = 0.05
-# Means this close (relative) tie: the regression gate's kFloatRelative (src/sweep/regress.h).
-FLOAT_RELATIVE = 1e-9
 # (section, key, what the reader calls it); lower is better for each.
 VERDICT_METRICS = (
     ("metrics", "fragments", "fragments"),
@@ -77,11 +75,6 @@ def value(run, section, key):
     return v if isinstance(v, (int, float)) and not isinstance(v, bool) else None
 
 
-def same(a, b):
-    """Equal within the regression gate's FLOAT_RELATIVE: a sum's last bits are no difference."""
-    return abs(a - b) <= FLOAT_RELATIVE * max(abs(a), abs(b))
-
-
 def per_seed(by_seed, section, key):
     return {s: v for s, r in by_seed.items() if (v := value(r, section, key)) is not None}
 
@@ -94,7 +87,7 @@ def compare(labels, section, key):
         return None
     means = sorted((statistics.fmean(v.values()), lab) for lab, v in values.items())
     (best_mean, best), (second_mean, second) = means[0], means[1]
-    tied = [lab for m, lab in means if same(m, best_mean)]
+    tied = [lab for m, lab in means if stats.close(m, best_mean)]
     seeds = sorted(set(values[best]) & set(values[second]))
     diffs = [values[second][s] - values[best][s] for s in seeds]
     _, p = stats.paired_t(diffs) if len(diffs) >= 2 else (None, None)
