@@ -35,6 +35,7 @@
 #include "sweep/report.h"
 #include "sweep/run_job.h"
 #include "sweep/runner.h"
+#include "sweep/suite_catalog.h"
 #include "sweep/suite_file.h"
 
 using namespace bsp;
@@ -179,8 +180,9 @@ std::size_t drawn_scene_count() {
 
 TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
   if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
-  for (const auto& suite : suites()) {
-    SCOPED_TRACE(suite.name);
+  for (const auto& name : builtin_suite_names()) {
+    SCOPED_TRACE(name);
+    const Suite suite = find_suite(name);
     const auto jobs = expand(suite);
     std::set<std::string> keys, scenes, heuristics_seen, merge_heuristics, doom_heuristics;
     for (const auto& j : jobs) {
@@ -1004,7 +1006,7 @@ TEST(BenchGate, ReportsAreNotBenchmarkOutputs) {
 }
 
 // The complete example of analysis/SUITE_SCHEMA.md (its one ```json block), read as if it lay in
-// analysis/suites/: every key reaches the jobs it should.
+// examples/suites/: every key reaches the jobs it should.
 TEST(SweepSuiteFile, SchemaExampleExpandsToWhatItsKeysAsk) {
   std::ifstream in(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/SUITE_SCHEMA.md");
   const std::string doc{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -1012,7 +1014,7 @@ TEST(SweepSuiteFile, SchemaExampleExpandsToWhatItsKeysAsk) {
   ASSERT_NE(begin, std::string::npos);
   const auto end = doc.find("```", begin + 8);
   const std::string text = doc.substr(begin + 8, end - begin - 8);
-  const Suite suite = parse_suite_file(text, std::string(BSPBENCH_SOURCE_DIR) + "/analysis/suites/full-example.json");
+  const Suite suite = parse_suite_file(text, std::string(BSPBENCH_SOURCE_DIR) + "/examples/suites/full-example.json");
   EXPECT_EQ(suite.name, "full-example");
   EXPECT_EQ(suite.source.text, text);
   std::map<std::string, std::size_t> kinds;

@@ -284,8 +284,8 @@ TEST_F(SweepCli, ReportRendersTheSegmentBoundAndDoomSections) {
 
 namespace {
 
-const fs::path kExampleSuite = fs::path(BSPBENCH_SOURCE_DIR) / "analysis" / "suites" / "example.json";
-const fs::path kCourtyard = fs::path(BSPBENCH_SOURCE_DIR) / "analysis" / "suites" / "meshes" / "courtyard.obj";
+const fs::path kExampleSuite = fs::path(BSPBENCH_SOURCE_DIR) / "examples" / "suites" / "example.json";
+const fs::path kCourtyard = fs::path(BSPBENCH_SOURCE_DIR) / "examples" / "suites" / "meshes" / "courtyard.obj";
 
 // Lines of `text` (a trailing newline ends the last one).
 std::size_t line_count(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
@@ -448,9 +448,21 @@ TEST_F(SweepCli, BadSuiteFilesAreOneLineErrorsWithTheirJsonPath) {
        "s.json: blocks[0].shapes[0]: a leafy tree is built recursively, not incrementally"},
       {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "shapes": ["round"]}]})",
        "s.json: blocks[0].shapes[0]: unknown shape 'round' (known: strict, coarse, leafy)"},
-      {R"({"name": "x", "animations": [{}]})", "s.json: animations: animate blocks are not supported in suite files"},
+      {R"({"name": "x", "animations": [{}]})", "s.json: animations[0]: missing key 'scenes'"},
+      {R"({"name": "x", "animations": [{"scenes": ["city"], "sizes": [100], "moving": [2], "speeds": [0.01], "strategies": ["teleport"]}]})",
+       "s.json: animations[0].strategies[0]: unknown update strategy 'teleport' (known: "},
+      {R"({"name": "x", "animations": [{"scenes": ["city"], "sizes": [100], "moving": [2], "speeds": [2]}]})",
+       "s.json: animations[0].speeds[0]: 2 is more than 1"},
+      {R"({"name": "x", "animations": [{"scenes": ["city"], "sizes": [100], "moving": [2], "speeds": [0.01], "object": "city"}]})",
+       "s.json: animations[0].object: 'city' is not a closed solid"},
+      {R"({"name": "x", "doom": [{"iwads": ["freedoom2.wad"], "builders": ["zenbsp"]}]})",
+       "s.json: doom[0].builders[0]: unknown node builder 'zenbsp' (known: "},
+      {R"({"name": "x", "doom": [{"iwads": ["../freedoom2.wad"]}]})",
+       "s.json: doom[0].iwads[0]: '../freedoom2.wad' is not a file name in the Doom data directory"},
+      {R"({"name": "x", "doom": [{"iwads": ["freedoom2.wad"], "heuristics": ["doom-splits", "doom-splits"]}]})",
+       "s.json: doom[0].heuristics[1]: repeats doom[0].heuristics[0]"},
       {R"({"name": "quick", "blocks": [{)" + ok_block + "}]}", "s.json: name: 'quick' is a built-in suite"},
-      {R"({"name": "x"})", "s.json: no runs: give \"blocks\", \"merges\" or \"occlusions\""},
+      {R"({"name": "x"})", "s.json: no runs: give \"blocks\", \"merges\", \"animations\", \"occlusions\" or \"doom\""},
       {R"({"name": "x", "merges": [{"pairs": ["spheres"], "ops": ["unite"], "sizes": [50]}]})",
        "s.json: merges[0].ops[0]: unknown set operation 'unite'"},
       {R"({"name": "x", "occlusions": [{"scenes": ["random-segments"], "sizes": [100]}]})",

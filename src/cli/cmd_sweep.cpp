@@ -12,7 +12,7 @@
 #include "sweep/record.h"
 #include "sweep/report.h"
 #include "sweep/runner.h"
-#include "sweep/suite_file.h"
+#include "sweep/suite_catalog.h"
 
 namespace bsp::cli {
 
@@ -51,8 +51,7 @@ int run(Args& args) {
   options.fresh = args.flag("--fresh");
   args.finish();
   if (const char* plant = std::getenv("BSPBENCH_PLANT_SLOWDOWN")) options.plant = sweep::parse_planted_slowdown(plant);
-  const sweep::Suite suite =
-      sweep::names_suite_file(suite_name) ? sweep::load_suite_file(suite_name) : sweep::find_suite(suite_name);
+  const sweep::Suite suite = sweep::find_suite(suite_name);
   options.journal_dir = journal_dir.value_or((std::filesystem::path(out).parent_path() / "journal").string());
   // std::clog, not std::cerr: the same stderr, but a stream whose buffer no mesh reader swaps out
   // while a job reads a file (io/mesh_reader_cgal.cpp quiets CGAL through std::cerr).

@@ -54,15 +54,6 @@ Job doom_job(const std::string& iwad, const std::string& map, DoomBuilder::Kind 
   return job;
 }
 
-// Known, not necessarily installed: a builder missing at run time is a run with an error.
-void check_builder(const std::string& name) {
-  const auto known = known_builders();
-  if (std::find(known.begin(), known.end(), name) != known.end()) return;
-  std::string list;
-  for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-  throw UsageError("unknown node builder '" + name + "' (known: " + list + ")");
-}
-
 ParamSet resolved_params(const DoomBuilder& b) {
   if (b.kind != DoomBuilder::Kind::Heuristic) return {};
   const HeuristicInfo& h = find_heuristic(b.name);
@@ -114,7 +105,7 @@ const Wad& doom_wad(const std::string& iwad) {
 }
 
 void expand_doom_block(const DoomBlock& block, std::vector<Job>& out) {
-  for (const auto& b : block.builders) check_builder(b);
+  for (const auto& b : block.builders) check_builder_name(b);
   for (const auto& iwad : block.iwads)
     for (const auto& map : block_maps(block, iwad)) {
       for (const auto& label : heuristic_labels(block))

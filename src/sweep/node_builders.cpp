@@ -193,4 +193,12 @@ BuilderRun run_node_builder(const std::string& builder, const std::string& in_pw
   return run;
 }
 
+void check_builder_name(const std::string& name) {
+  const auto known = known_builders();
+  if (std::find(known.begin(), known.end(), name) != known.end()) return;
+  std::string list;
+  for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+  throw UsageError("unknown node builder '" + name + "' (known: " + list + ")");
+}
+
 }  // namespace bsp::sweep

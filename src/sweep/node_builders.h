@@ -34,6 +34,9 @@ struct BuilderInstall {
 };
 
 std::vector<std::string> known_builders();
+// Throws UsageError naming the known builders when `name` is none of them. Known, not necessarily
+// installed: a builder missing at run time is a run with an error.
+void check_builder_name(const std::string& name);
 
 // UsageError listing the known builders for any other name.
 BuilderInstall find_builder(const std::string& builder);

@@ -7,7 +7,7 @@
 // outside a generator's `n` range is skipped for it. A mesh (a file or mesh:NAME) has no size: it
 // runs once per heuristic, shape and seed, the seed feeding only the heuristic.
 //
-// The built-in suites are here; users write their own as JSON (suite_file.h).
+// Every suite is a JSON file (suite_file.h); the built-in ones are analysis/suites/*.json (suite_catalog.h).
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -142,8 +142,5 @@ struct Suite {
   SuiteSource source = {};  // empty for the built-in suites
 };
 
-const std::vector<Suite>& suites();
-// Throws UsageError naming the known suites (suite files are suite_file.h's).
-const Suite& find_suite(std::string_view name);
 
 }  // namespace bsp::sweep

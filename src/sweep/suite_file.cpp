@@ -8,17 +8,22 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include "animation.h"
 #include "catalog.h"
 #include "common/errors.h"
+#include "dynamic/updater.h"
 #include "io/mesh_reader.h"
 #include "mesh_scenes.h"
 #include "solid_pairs.h"
 #include "split/registry.h"
+#include "sweep/doom_run.h"
 #include "sweep/job.h"
+#include "sweep/node_builders.h"
 
 namespace bsp::sweep {
 
@@ -107,26 +112,27 @@ class SuiteParser {
   Suite parse(const json& root) {
     expect(root, root.is_object(), "", "an object");
     check_keys(root, "", {"name", "summary", "blocks", "merges", "occlusions", "animations", "doom"});
-    for (const char* unsupported : {"animations", "doom"})
-      if (root.contains(unsupported))
-        fail(unsupported, std::string(unsupported) == "doom"
-                              ? "Doom blocks are not supported in suite files (run the doom suite or bspbench doom)"
-                              : "animate blocks are not supported in suite files (run the dynamic suite or "
-                                "bspbench animate)");
     Suite suite;
     suite.name = suite_name(required(root, "", "name"));
     if (const json* s = optional(root, "summary")) suite.summary = string(*s, "summary");
     if (const json* b = optional(root, "blocks"))
-      each(*b, "blocks", "leave \"blocks\" out for a suite of merges or occlusions only",
+      each(*b, "blocks", "leave \"blocks\" out for a suite without drawing runs",
            [&](const json& j, const std::string& path) { suite.blocks.push_back(block(j, path)); });
     if (const json* m = optional(root, "merges"))
       each(*m, "merges", "leave \"merges\" out",
            [&](const json& j, const std::string& path) { suite.merges.push_back(merge_block(j, path)); });
+    if (const json* a = optional(root, "animations"))
+      each(*a, "animations", "leave \"animations\" out",
+           [&](const json& j, const std::string& path) { suite.animations.push_back(animate_block(j, path)); });
     if (const json* o = optional(root, "occlusions"))
       each(*o, "occlusions", "leave \"occlusions\" out",
            [&](const json& j, const std::string& path) { suite.occlusions.push_back(occlude_block(j, path)); });
-    if (suite.blocks.empty() && suite.merges.empty() && suite.occlusions.empty())
-      fail("", "no runs: give \"blocks\", \"merges\" or \"occlusions\"");
+    if (const json* d = optional(root, "doom"))
+      each(*d, "doom", "leave \"doom\" out",
+           [&](const json& j, const std::string& path) { suite.doom.push_back(doom_block(j, path)); });
+    if (suite.blocks.empty() && suite.merges.empty() && suite.animations.empty() && suite.occlusions.empty() &&
+        suite.doom.empty())
+      fail("", "no runs: give \"blocks\", \"merges\", \"animations\", \"occlusions\" or \"doom\"");
     check_runs(suite);
     return suite;
   }
@@ -192,6 +198,14 @@ class SuiteParser {
     fail(path, j.dump() + " is less than " + std::to_string(min));
   }
 
+  double real(const json& j, const std::string& path, double min, double max, bool open_min = false) const {
+    expect(j, j.is_number(), path, "a number");
+    const double v = j.get<double>();
+    if (open_min ? v <= min : v < min) fail(path, j.dump() + (open_min ? " is not more than " : " is less than ") + json(min).dump());
+    if (v > max) fail(path, j.dump() + " is more than " + json(max).dump());
+    return v;
+  }
+
   // A non-empty array, each element given to f with its path.
   void each(const json& j, const std::string& path, std::string_view if_empty,
             const std::function<void(const json&, const std::string&)>& f) const {
@@ -231,8 +245,6 @@ class SuiteParser {
     if (!ok)
       fail("name", "'" + name + "' is not a suite name (letters, digits, '-', '_' and '.', starting with a letter or "
                     "digit, at most " + std::to_string(kMaxNameLength) + " characters)");
-    for (const auto& s : suites())
-      if (s.name == name) fail("name", "'" + name + "' is a built-in suite; give yours another name");
     return name;
   }
 
@@ -548,25 +560,8 @@ class SuiteParser {
     check_keys(j, path, {"scenes", "sizes", "heuristics", "seeds", "views"});
     OccludeBlock b;
     std::vector<const GeneratorInfo*> sized;
-    std::map<std::string, std::string> seen;
-    each(required(j, path, "scenes"), child(path, "scenes"), "name at least one generator", [&](const json& v, const std::string& p) {
-      const std::string name = v.is_string() ? v.get<std::string>() : std::string();
-      if (!v.is_string() || is_mesh_scene(name) || is_file_scene(name))
-        fail(p, "occlusion scenes are generator names (no parameters, files or meshes)");
-      const GeneratorInfo& g = at(p, [&]() -> const GeneratorInfo& { return find_generator(name); });
-      if (g.segments) fail(p, name + " is 2D; occlusion culling wants a 3D scene");
-      once(seen, g.name, p);
-      b.scenes.push_back(g.name);
-      if (n_spec(g)) sized.push_back(&g);
-    });
-    if (const json* s = optional(j, "sizes")) {
-      const std::string p = child(path, "sizes");
-      if (sized.empty()) fail(p, "no scene of this block takes a size");
-      b.sizes = integers(*s, p, 1, std::numeric_limits<std::int64_t>::max(), "give at least one size");
-      for (const auto* g : sized) check_range(*g, b.sizes, p);
-    } else if (!sized.empty()) {
-      fail(path, "missing key 'sizes' (" + sized.front()->name + " takes a size n)");
-    }
+    b.scenes = generator_names(required(j, path, "scenes"), child(path, "scenes"), "occlusion culling", sized);
+    b.sizes = generator_sizes(j, path, sized);
     if (const json* h = optional(j, "heuristics")) b.heuristics = heuristics(*h, child(path, "heuristics"));
     b.seeds = seeds(j, path);
     b.views = kDefaultOccludeViews;
@@ -574,17 +569,148 @@ class SuiteParser {
     return b;
   }
 
+  // The 3D generators of a block that names them plainly (`what` says which block, for messages).
+  std::vector<std::string> generator_names(const json& j, const std::string& path, const std::string& what,
+                                           std::vector<const GeneratorInfo*>& sized) const {
+    std::vector<std::string> names;
+    std::map<std::string, std::string> seen;
+    each(j, path, "name at least one generator", [&](const json& v, const std::string& p) {
+      const std::string name = v.is_string() ? v.get<std::string>() : std::string();
+      if (!v.is_string() || is_mesh_scene(name) || is_file_scene(name))
+        fail(p, what + " scenes are generator names (no parameters, files or meshes)");
+      const GeneratorInfo& g = at(p, [&]() -> const GeneratorInfo& { return find_generator(name); });
+      if (g.segments) fail(p, name + " is 2D; " + what + " wants a 3D scene");
+      once(seen, g.name, p);
+      names.push_back(g.name);
+      if (n_spec(g)) sized.push_back(&g);
+    });
+    return names;
+  }
+
+  // "sizes" of a block of plain generators: required when one takes a size, within each one's range.
+  std::vector<std::uint64_t> generator_sizes(const json& j, const std::string& path,
+                                             const std::vector<const GeneratorInfo*>& sized) const {
+    const json* s = optional(j, "sizes");
+    if (!s) {
+      if (!sized.empty()) fail(path, "missing key 'sizes' (" + sized.front()->name + " takes a size n)");
+      return {};
+    }
+    const std::string p = child(path, "sizes");
+    if (sized.empty()) fail(p, "no scene of this block takes a size");
+    auto sizes = integers(*s, p, 1, std::numeric_limits<std::int64_t>::max(), "give at least one size");
+    for (const auto* g : sized) check_range(*g, sizes, p);
+    return sizes;
+  }
+
+  // A non-empty list of distinct names, each checked by `check` (which throws what the registries throw).
+  std::vector<std::string> names(const json& j, const std::string& path, std::string_view if_empty,
+                                 const std::function<void(const std::string&)>& check) const {
+    std::vector<std::string> out;
+    std::map<std::string, std::string> seen;
+    each(j, path, if_empty, [&](const json& v, const std::string& p) {
+      const std::string name = string(v, p);
+      at(p, [&] { check(name); });
+      once(seen, name, p);
+      out.push_back(name);
+    });
+    return out;
+  }
+
+  // The same bounds as `bspbench animate` (generators/animation.h checks them again when a job runs).
+  AnimateBlock animate_block(const json& j, const std::string& path) const {
+    expect(j, j.is_object(), path, "an object");
+    check_keys(j, path, {"scenes", "sizes", "heuristics", "strategies", "moving", "speeds", "seeds", "frames", "object",
+                         "object_n", "size", "spin", "check_every", "drift_every", "views"});
+    AnimateBlock b;
+    std::vector<const GeneratorInfo*> sized;
+    b.scenes = generator_names(required(j, path, "scenes"), child(path, "scenes"), "animation", sized);
+    b.sizes = generator_sizes(j, path, sized);
+    if (const json* h = optional(j, "heuristics")) b.heuristics = heuristics(*h, child(path, "heuristics"));
+    if (const json* s = optional(j, "strategies"))
+      b.strategies = names(*s, child(path, "strategies"), "leave \"strategies\" out for every strategy",
+                           [](const std::string& name) {
+                             const auto known = updater_names();
+                             if (std::find(known.begin(), known.end(), name) == known.end())
+                               throw UsageError("unknown update strategy '" + name + "' (known: " + join(known) + ")");
+                           });
+    std::map<std::string, std::string> seen;
+    each(required(j, path, "moving"), child(path, "moving"), "give at least one count", [&](const json& v, const std::string& p) {
+      b.moving.push_back(static_cast<std::uint32_t>(integer(v, p, 0, 1000)));
+      once(seen, std::to_string(b.moving.back()), p);
+    });
+    seen.clear();
+    each(required(j, path, "speeds"), child(path, "speeds"), "give at least one speed", [&](const json& v, const std::string& p) {
+      b.speeds.push_back(real(v, p, 0, 1));
+      once(seen, json(b.speeds.back()).dump(), p);
+    });
+    b.seeds = seeds(j, path);
+    if (const json* v = optional(j, "frames")) b.frames = static_cast<std::uint32_t>(integer(*v, child(path, "frames"), 1, 100000));
+    if (const json* v = optional(j, "object")) {
+      b.object = string(*v, child(path, "object"));
+      if (b.object != kSceneGroups && !at(child(path, "object"), [&] { return find_generator(b.object).closed_solid; }))
+        fail(child(path, "object"), "'" + b.object + "' is not a closed solid (bspbench scenes) or '" +
+                                        std::string(kSceneGroups) + "'");
+    }
+    if (const json* v = optional(j, "object_n")) b.object_n = integer(*v, child(path, "object_n"), 1, 100000);
+    if (const json* v = optional(j, "size")) b.size = real(*v, child(path, "size"), 0, 0.5, true);
+    if (const json* v = optional(j, "spin")) b.spin = real(*v, child(path, "spin"), 0, std::numbers::pi);
+    if (const json* v = optional(j, "check_every")) b.check_every = static_cast<std::uint32_t>(integer(*v, child(path, "check_every"), 1, 100000));
+    if (const json* v = optional(j, "drift_every")) b.drift_every = static_cast<std::uint32_t>(integer(*v, child(path, "drift_every"), 0, 100000));
+    if (const json* v = optional(j, "views")) b.views = static_cast<std::uint32_t>(integer(*v, child(path, "views"), 0, kMaxViews));
+    return b;
+  }
+
+  // A Doom block's heuristic: a Doom preset's name or a heuristic label.
+  std::vector<std::string> doom_heuristics(const json& j, const std::string& path) const {
+    std::vector<std::string> out;
+    std::map<std::string, std::string> seen;
+    each(j, path, "leave \"heuristics\" out for every heuristic and Doom preset", [&](const json& h, const std::string& p) {
+      std::string identity;
+      if (h.is_string() && doom_preset(h.get<std::string>())) {
+        out.push_back(h.get<std::string>());
+        identity = "preset " + out.back();
+      } else {
+        out.push_back(heuristic(h, p, identity));
+      }
+      once(seen, identity, p);
+    });
+    return out;
+  }
+
+  // IWADs are file names in the Doom data directory; they are read when the suite expands, which
+  // names a missing one and the package that has it.
+  DoomBlock doom_block(const json& j, const std::string& path) const {
+    expect(j, j.is_object(), path, "an object");
+    check_keys(j, path, {"iwads", "maps", "heuristics", "builders", "seeds", "views"});
+    DoomBlock b;
+    b.iwads = names(required(j, path, "iwads"), child(path, "iwads"), "name at least one IWAD", [](const std::string& name) {
+      if (name.empty() || name.find('/') != std::string::npos)
+        throw UsageError("'" + name + "' is not a file name in the Doom data directory");
+    });
+    if (const json* m = optional(j, "maps"))
+      b.maps = names(*m, child(path, "maps"), "leave \"maps\" out for every map", [](const std::string&) {});
+    if (const json* h = optional(j, "heuristics")) b.heuristics = doom_heuristics(*h, child(path, "heuristics"));
+    if (const json* bs = optional(j, "builders"))
+      b.builders = names(*bs, child(path, "builders"), "leave \"builders\" out for none", check_builder_name);
+    b.seeds = seeds(j, path);
+    if (const json* v = optional(j, "views")) b.views = static_cast<std::uint32_t>(integer(*v, child(path, "views"), 0, kMaxViews));
+    return b;
+  }
+
   // Every block must run something: a block whose sizes all miss its generators' ranges would
   // otherwise vanish from the sweep without a word.
   void check_runs(const Suite& suite) const {
-    const auto check = [&](const std::string& path, Suite one) {
+    const auto check = [&](const std::string& path, const Suite& one) {
       const auto jobs = at(path, [&] { return expand(one); });
       if (jobs.empty()) fail(path, "no runs (no size lies in the range of n of any scene)");
     };
-    for (std::size_t i = 0; i < suite.blocks.size(); ++i) check(element("blocks", i), Suite{"", "", {suite.blocks[i]}});
-    for (std::size_t i = 0; i < suite.merges.size(); ++i) check(element("merges", i), Suite{"", "", {}, {suite.merges[i]}});
+    for (std::size_t i = 0; i < suite.blocks.size(); ++i) check(element("blocks", i), Suite{.blocks = {suite.blocks[i]}});
+    for (std::size_t i = 0; i < suite.merges.size(); ++i) check(element("merges", i), Suite{.merges = {suite.merges[i]}});
+    for (std::size_t i = 0; i < suite.animations.size(); ++i)
+      check(element("animations", i), Suite{.animations = {suite.animations[i]}});
     for (std::size_t i = 0; i < suite.occlusions.size(); ++i)
-      check(element("occlusions", i), Suite{"", "", {}, {}, {}, {suite.occlusions[i]}});
+      check(element("occlusions", i), Suite{.occlusions = {suite.occlusions[i]}});
+    // Doom blocks are not expanded here: that reads their IWADs, which expansion does anyway.
   }
 
   std::string file_;
