@@ -5,9 +5,9 @@ Deterministic fields come from the runs themselves, paired by command (a job key
 heuristic's resolved parameters, so a changed default would unpair them): a group (scene, label,
 size) is listed when any of its runs changed a metric or its heuristic's parameters, with the
 metric's means over seeds before and after. Values count as equal within the regression gate's
-relative tolerance (kFloatRelative, src/sweep/regress.h), so a last-bit difference of a sum is no
+relative tolerance (kFloatRelative, src/gate/regress.h), so a last-bit difference of a sum is no
 change. Timings are the gate's own test (comparison.json, written by bspbench report from
-src/sweep/regress.h): each group's calibrated build samples, Mann–Whitney, and the ratio of medians.
+src/gate/regress.h): each group's calibrated build samples, Mann–Whitney, and the ratio of medians.
 """
 import html
 import json
@@ -33,7 +33,7 @@ def group_of(rid):
 
 
 def pairing(rid):
-    """How the gate pairs runs for this comparison (command_key in src/sweep/regress.cpp)."""
+    """How the gate pairs runs for this comparison (command_key in src/gate/regress.cpp)."""
     return rid["command"], json.dumps(rid.get("validation_views"))
 
 

@@ -12,7 +12,7 @@ import statistics
 
 
 # Two results this close (relative) are equal: the regression gate's kFloatRelative
-# (src/sweep/regress.h), since a sum's last bits may differ between builds of the same tree.
+# (src/gate/regress.h), since a sum's last bits may differ between builds of the same tree.
 FLOAT_RELATIVE = 1e-9
 
 

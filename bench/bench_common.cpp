@@ -12,10 +12,10 @@
 #include "catalog.h"
 #include "common/errors.h"
 #include "common/revision.h"
+#include "experiments/draw/draw.h"
 #include "metrics/traversal_cost.h"
 #include "metrics/tree_metrics.h"
 #include "split/registry.h"
-#include "sweep/record.h"
 #include "tree/build.h"
 #include "tree/traverse.h"
 
@@ -118,7 +118,7 @@ const Tree& tree(const Scene& scene, const std::string& heuristic, std::uint64_t
     c.tree = std::make_unique<Tree>(build_tree(scene.polygons, *splitter));
     c.metrics = to_json(measure_tree(*c.tree, MetricsSettings{}));
     nlohmann::json timings;
-    sweep::split_timings(c.metrics, timings, "");
+    experiments::split_timings(c.metrics, timings, "", experiments::draw_timing_fields());
     c.key = key;
   }
   return *c.tree;

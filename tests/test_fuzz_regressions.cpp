@@ -12,8 +12,8 @@
 #include "common/errors.h"
 #include "io/mesh_reader.h"
 #include "io/polygon_cleanup.h"
-#include "sweep/regress.h"
-#include "sweep/report.h"
+#include "gate/regress.h"
+#include "results/report.h"
 
 namespace fs = std::filesystem;
 
@@ -50,7 +50,7 @@ class FuzzFindings : public ::testing::Test {
         {"validation", nullptr},
         {"timings", {{"build_cpu_seconds", 0.5}}},
         {"calibration_seconds", 0.1}};
-    return {{"schema", "bspbench-report"}, {"version", bsp::sweep::kReportVersion},
+    return {{"schema", "bspbench-report"}, {"version", bsp::results::kReportVersion},
             {"suite", {{"name", "s"}, {"definition_hash", "h"}, {"jobs", 1}}},
             {"shards", {{{"index", 0}, {"count", 1}, {"jobs", 1}}}},
             {"runs", {run}},
@@ -144,8 +144,8 @@ TEST_F(FuzzFindings, PlyElementOnTheFormatLineIsNoElement) {
 
 TEST_F(FuzzFindings, MinimalReportIsAcceptedAndCompared) {
   const auto path = write("ok.json", minimal_report().dump());
-  const nlohmann::json report = bsp::sweep::read_report(path);
-  EXPECT_FALSE(bsp::sweep::compare_reports(report, report, {}).failed());
+  const nlohmann::json report = bsp::results::read_report(path);
+  EXPECT_FALSE(bsp::gate::compare_reports(report, report, {}).failed());
 }
 
 // compare_reports indexed a run's missing "validation", and aggregation (behind merge-reports) its
@@ -157,7 +157,7 @@ TEST_F(FuzzFindings, RunWithoutAFieldTheReadersUseIsAnInputError) {
            {"", "calibration_seconds"}, {"id", "kind"}, {"id", "command"}}) {
     nlohmann::json r = minimal_report();
     (section.empty() ? r["runs"][0] : r["runs"][0][section]).erase(key);
-    EXPECT_THROW(bsp::sweep::read_report(write("no_" + key + ".json", r.dump())), bsp::InputError) << key;
+    EXPECT_THROW(bsp::results::read_report(write("no_" + key + ".json", r.dump())), bsp::InputError) << key;
   }
 }
 
@@ -165,13 +165,13 @@ TEST_F(FuzzFindings, RunWithoutAFieldTheReadersUseIsAnInputError) {
 TEST_F(FuzzFindings, ReportFieldsOfTheWrongTypeAreAnInputError) {
   nlohmann::json schema = minimal_report();
   schema["schema"] = 5;
-  EXPECT_THROW(bsp::sweep::read_report(write("schema.json", schema.dump())), bsp::InputError);
+  EXPECT_THROW(bsp::results::read_report(write("schema.json", schema.dump())), bsp::InputError);
   nlohmann::json label = minimal_report();
   label["runs"][0]["id"]["scene"] = 7;
-  EXPECT_THROW(bsp::sweep::read_report(write("label.json", label.dump())), bsp::InputError);
+  EXPECT_THROW(bsp::results::read_report(write("label.json", label.dump())), bsp::InputError);
   nlohmann::json violations = minimal_report();
   violations["runs"][0]["invariants"]["violations"] = "none";
-  EXPECT_THROW(bsp::sweep::read_report(write("violations.json", violations.dump())), bsp::InputError);
+  EXPECT_THROW(bsp::results::read_report(write("violations.json", violations.dump())), bsp::InputError);
 }
 
 // A face that turns straight back at one vertex (a spike) passed the convexity test, so a

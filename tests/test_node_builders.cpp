@@ -1,4 +1,4 @@
-// External node builders (sweep/node_builders.h) on a map small enough to write here: an L-shaped
+// External node builders (experiments/doom/node_builders.h) on a map small enough to write here: an L-shaped
 // room, which is not convex, so every builder must split it with at least one node.
 #include <gtest/gtest.h>
 
@@ -12,12 +12,12 @@
 
 #include "cli_runner.h"
 #include "common/errors.h"
-#include "sweep/node_builders.h"
+#include "experiments/doom/node_builders.h"
 
 namespace fs = std::filesystem;
-using bsp::sweep::find_builder;
-using bsp::sweep::known_builders;
-using bsp::sweep::run_node_builder;
+using bsp::experiments::find_builder;
+using bsp::experiments::known_builders;
+using bsp::experiments::run_node_builder;
 
 namespace {
 

@@ -23,31 +23,45 @@
 #include "common/errors.h"
 #include "solid_pairs.h"
 #include "split/registry.h"
-#include "sweep/aggregate.h"
-#include "sweep/bench_gate.h"
-#include "sweep/doom_job.h"
+#include "experiments/animate/animate.h"
+#include "experiments/doom/doom.h"
+#include "experiments/doom/iwads.h"
+#include "experiments/doom/node_builders.h"
+#include "experiments/draw/draw.h"
+#include "experiments/heuristic_choice.h"
+#include "experiments/merge/merge.h"
+#include "experiments/occlude/occlude.h"
+#include "gate/bench_gate.h"
+#include "gate/regress.h"
+#include "kinds/kinds.h"
+#include "results/aggregate.h"
+#include "results/record.h"
+#include "results/report.h"
+#include "results/shards.h"
+#include "suite/catalog.h"
+#include "suite/expand.h"
+#include "suite/suite_file.h"
 #include "sweep/journal.h"
-#include "sweep/merge.h"
-#include "sweep/node_builders.h"
 #include "sweep/progress.h"
-#include "sweep/record.h"
-#include "sweep/regress.h"
-#include "sweep/report.h"
-#include "sweep/run_job.h"
 #include "sweep/runner.h"
-#include "sweep/suite_catalog.h"
-#include "sweep/suite_file.h"
 
 using namespace bsp;
+using namespace bsp::experiments;
+using namespace bsp::gate;
+using namespace bsp::results;
+using namespace bsp::suite;
 using namespace bsp::sweep;
 namespace fs = std::filesystem;
 
 namespace {
 
+// A suite file's text, parsed as the sweep parses one.
+Suite suite_of(const std::string& text) { return parse_suite_file(text, "test.json"); }
+
 // 16 small jobs: enough for two sizes, two seeds and two of everything else, in a second or two.
 Suite tiny_suite() {
-  return {"tiny", "test suite",
-          {{{"random-triangles", "cyclic-overlap"}, {"first", "random"}, {40, 80}, {}, {1, 2}, {Shape::Strict}, {1, 0, 1}}}};
+  return suite_of(R"({"name": "tiny", "summary": "test suite", "blocks": [{"scenes": ["random-triangles", "cyclic-overlap"],
+                      "heuristics": ["first", "random"], "sizes": [40, 80], "seeds": [1, 2]}]})");
 }
 
 fs::path scratch_dir() {
@@ -86,8 +100,9 @@ const nlohmann::json& tiny_report() {
 
 // 8 merge jobs: two spheres of 48 triangles each, two heuristics, two operations, two seeds.
 Suite tiny_merge_suite() {
-  return {"tiny-merge", "test suite", {},
-          {{{"spheres"}, {"first", "naylor"}, {SetOp::Union, SetOp::Difference}, {50}, {1, 2}, 1000}}};
+  return suite_of(R"({"name": "tiny-merge", "summary": "test suite", "merges": [{"pairs": ["spheres"],
+                      "heuristics": ["first", "naylor"], "ops": ["union", "difference"], "sizes": [50], "seeds": [1, 2],
+                      "points": 1000}]})");
 }
 
 const nlohmann::json& tiny_merge_report() {
@@ -98,20 +113,11 @@ const nlohmann::json& tiny_merge_report() {
 // 8 animate jobs (city at 100, crystal, rebuild and merge, one and two spheres, two seeds, 4 frames)
 // and 2 occlude jobs (architecture at 100, two seeds).
 Suite tiny_dynamic_suite() {
-  AnimateBlock a;
-  a.scenes = {"city"};
-  a.sizes = {100};
-  a.heuristics = {"crystal"};
-  a.strategies = {"rebuild", "merge"};
-  a.moving = {1, 2};
-  a.speeds = {0.01};
-  a.seeds = {1, 2};
-  a.frames = 4;
-  a.object_n = 24;
-  a.check_every = 1;
-  a.drift_every = 2;
-  a.views = 1;
-  return {"tiny-dynamic", "test suite", {}, {}, {a}, {{{"architecture"}, {100}, {"crystal"}, {1, 2}, 2}}};
+  return suite_of(R"({"name": "tiny-dynamic", "summary": "test suite",
+    "animations": [{"scenes": ["city"], "sizes": [100], "heuristics": ["crystal"], "strategies": ["rebuild", "merge"],
+                    "moving": [1, 2], "speeds": [0.01], "seeds": [1, 2], "frames": 4, "object_n": 24,
+                    "check_every": 1, "drift_every": 2, "views": 1}],
+    "occlusions": [{"scenes": ["architecture"], "sizes": [100], "heuristics": ["crystal"], "seeds": [1, 2], "views": 2}]})");
 }
 
 const nlohmann::json& tiny_dynamic_report() {
@@ -119,19 +125,77 @@ const nlohmann::json& tiny_dynamic_report() {
   return report;
 }
 
-// Suites with Doom blocks read the Freedoom IWADs as they expand (sweep/doom_job.h); tests of them
+// Suites with Doom blocks read the Freedoom IWADs as they expand (experiments/doom/doom.h); tests of them
 // skip without the IWADs, as the other Doom tests do.
 bool freedoom_installed() {
   return fs::exists(doom_iwad_path("freedoom1.wad")) && fs::exists(doom_iwad_path("freedoom2.wad"));
 }
 const std::string kNoFreedoom = "needs the Freedoom IWADs (apt-get install freedoom)";
 
-Suite doom_only(DoomBlock block) { return {"doom-test", "test suite", {}, {}, {}, {}, {std::move(block)}}; }
+// A suite of one Doom block, given as its JSON object.
+Suite doom_only(const std::string& block) {
+  return suite_of(R"({"name": "doom-test", "summary": "test suite", "doom": [)" + block + "]}");
+}
+
+// What a test asks of any job, whatever its kind.
+struct JobFacts {
+  std::string kind, key, scene, heuristic;
+  std::uint64_t n = 0, seed = 0;
+  Shape shape = Shape::Strict;
+  bool incremental = false, file = false;
+  std::uint32_t validation_views = 0;
+  ParamAssignments scene_params;
+  std::optional<SetOp> op;
+  std::optional<DoomBuilder::Kind> doom;
+  std::string map;
+};
+
+JobFacts facts(const Job& job) {
+  JobFacts f;
+  f.kind = job.kind();
+  f.key = job.key();
+  f.n = job.n();
+  const auto scene = [&](const SceneRun& s) {
+    f.scene = s.scene;
+    f.heuristic = s.heuristic_label();
+    f.seed = s.seed;
+    f.shape = s.shape;
+    f.incremental = s.incremental();
+    f.file = s.file.has_value();
+    f.validation_views = s.views;
+    f.scene_params = s.scene_params;
+  };
+  if (const auto* d = dynamic_cast<const DrawJob*>(&job)) scene(d->spec());
+  if (const auto* a = dynamic_cast<const AnimateJob*>(&job)) scene(a->scene());
+  if (const auto* o = dynamic_cast<const OccludeJob*>(&job)) scene(o->scene());
+  if (const auto* m = dynamic_cast<const MergeJob*>(&job)) {
+    f.scene = m->spec().pair;
+    f.heuristic = m->spec().heuristic.label;
+    f.seed = m->spec().seed;
+    f.op = m->spec().op;
+  }
+  if (const auto* d = dynamic_cast<const DoomJob*>(&job)) {
+    f.scene = d->spec().iwad;
+    f.heuristic = d->spec().label;
+    f.seed = d->spec().seed;
+    f.shape = Shape::Leafy;
+    f.doom = d->spec().builder.kind;
+    f.map = d->spec().map;
+  }
+  return f;
+}
+
+// The blocks of `suite` of one kind.
+std::size_t blocks_of(const Suite& suite, std::string_view kind) {
+  return static_cast<std::size_t>(
+      std::count_if(suite.blocks.begin(), suite.blocks.end(), [&](const SuiteBlock& b) { return b.kind->name == kind; }));
+}
 
 // 8 Doom jobs: freedoom2's MAP01 and MAP02 built by crystal and naylor (seed 1, one view), by ZDBSP,
 // and as shipped.
 Suite tiny_doom_suite() {
-  return doom_only({{"freedoom2.wad"}, {"MAP01", "MAP02"}, {"crystal", "naylor"}, {"zdbsp"}, {1}, 1});
+  return doom_only(R"({"iwads": ["freedoom2.wad"], "maps": ["MAP01", "MAP02"], "heuristics": ["crystal", "naylor"],
+                        "builders": ["zdbsp"], "seeds": [1], "views": 1})");
 }
 
 const nlohmann::json& tiny_doom_report() {
@@ -185,18 +249,19 @@ TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
     const Suite suite = find_suite(name);
     const auto jobs = expand(suite);
     std::set<std::string> keys, scenes, heuristics_seen, merge_heuristics, doom_heuristics;
-    for (const auto& j : jobs) {
+    for (const auto& job : jobs) {
+      const JobFacts j = facts(*job);
       keys.insert(j.key);
       if (j.op) {
         merge_heuristics.insert(j.heuristic);
         continue;
       }
       if (j.doom) {
-        if (j.doom->builder == DoomBuilder::Kind::Heuristic) doom_heuristics.insert(j.heuristic);
+        if (*j.doom == DoomBuilder::Kind::Heuristic) doom_heuristics.insert(j.heuristic);
         continue;
       }
       scenes.insert(j.scene);
-      if (!j.incremental) heuristics_seen.insert(parse_heuristic_variant(j.heuristic).name);
+      if (!j.incremental) heuristics_seen.insert(split_heuristic_label(j.heuristic).name);
     }
     EXPECT_EQ(keys.size(), jobs.size());
     // A suite of 3D scenes runs every one of them; 2D scenes (segments) run in suites of their own,
@@ -204,18 +269,18 @@ TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
     const auto flat = static_cast<std::size_t>(std::count_if(scenes.begin(), scenes.end(), [](const std::string& name) {
       return find_generator(name).segments;
     }));
-    if (!suite.blocks.empty()) {
+    if (blocks_of(suite, "draw") > 0) {
       EXPECT_EQ(scenes.size() - flat, flat == scenes.size() ? 0 : drawn_scene_count());
       if (flat == scenes.size()) {
         EXPECT_EQ(flat, generators().size() - drawn_scene_count() - solid_count());
       }
       EXPECT_EQ(heuristics_seen.size(), heuristics().size());
     }
-    if (!suite.merges.empty()) {
+    if (blocks_of(suite, "merge") > 0) {
       EXPECT_EQ(merge_heuristics.size(), heuristics().size());
     }
     // Doom maps: every registered heuristic and every Doom preset.
-    if (!suite.doom.empty()) {
+    if (blocks_of(suite, "doom") > 0) {
       EXPECT_EQ(doom_heuristics.size(), heuristics().size() + doom_presets().size());
     }
   }
@@ -227,24 +292,24 @@ TEST(SweepSuites, EveryRegisteredHeuristicAndGeneratorIsSweptOnceEach) {
 // suite as it expands.
 TEST(SweepSuites, DoomBlocksRunHeuristicsPerSeedAndEachBuilderOncePerMap) {
   if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
-  const DoomBlock block{{"freedoom2.wad"},
-                        {"MAP01", "MAP02"},
-                        {"crystal", "weighted:candidates=0,sample=64", "doom-splits"},
-                        {"zdbsp", "glbsp"},
-                        {1, 2},
-                        2};
-  const auto jobs = expand(doom_only(block));
+  const auto block = [](const std::string& maps, const std::string& builders, const std::string& iwad) {
+    return R"({"iwads": [")" + iwad + R"("], "maps": [)" + maps +
+           R"(], "heuristics": ["crystal", "weighted:candidates=0,sample=64", "doom-splits"], "builders": [)" + builders +
+           R"(], "seeds": [1, 2], "views": 2})";
+  };
+  const auto jobs = expand(doom_only(block(R"("MAP01", "MAP02")", R"("zdbsp", "glbsp")", "freedoom2.wad")));
   EXPECT_EQ(jobs.size(), 2u * (3 * 2 + 2 + 1));
   std::set<std::string> keys;
-  for (const auto& j : jobs) {
+  for (const auto& job : jobs) {
+    const JobFacts j = facts(*job);
     keys.insert(j.key);
-    ASSERT_EQ(j.kind(), JobKind::Doom);
-    const nlohmann::json id = job_identity(j);
+    ASSERT_EQ(j.kind, "doom");
+    const nlohmann::json id = job->identity();
     const std::string command = id["command"];
     SCOPED_TRACE(command);
-    EXPECT_EQ(command.rfind("bspbench doom --iwad freedoom2.wad --maps " + j.doom->map + " --heuristics ", 0), 0u);
+    EXPECT_EQ(command.rfind("bspbench doom --iwad freedoom2.wad --maps " + j.map + " --heuristics ", 0), 0u);
     EXPECT_EQ(id["builder"], j.heuristic);
-    if (j.doom->builder == DoomBuilder::Kind::Heuristic) {
+    if (*j.doom == DoomBuilder::Kind::Heuristic) {
       EXPECT_EQ(id["builder_kind"], "heuristic");
       EXPECT_NE(command.find(" --seed " + std::to_string(j.seed) + " --views 2 --json"), std::string::npos);
     } else {
@@ -265,16 +330,11 @@ TEST(SweepSuites, DoomBlocksRunHeuristicsPerSeedAndEachBuilderOncePerMap) {
   }
   EXPECT_EQ(keys.size(), jobs.size());
 
-  DoomBlock bad = block;
-  bad.maps = {"MAP01", "MAP99"};
-  EXPECT_THROW(expand(doom_only(bad)), InputError);
-  bad = block;
-  bad.builders = {"bsp5"};
-  EXPECT_THROW(expand(doom_only(bad)), UsageError);
-  bad = block;
-  bad.iwads = {"doom3.wad"};
+  EXPECT_THROW(expand(doom_only(block(R"("MAP01", "MAP99")", R"("zdbsp")", "freedoom2.wad"))), InputError);
+  // An unknown builder is refused as the file is read.
+  EXPECT_THROW(doom_only(block(R"("MAP01")", R"("bsp5")", "freedoom2.wad")), InputError);
   try {
-    expand(doom_only(bad));
+    expand(doom_only(block(R"("MAP01")", R"("zdbsp")", "doom3.wad")));
     ADD_FAILURE() << "a missing IWAD expanded";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(doom_iwad_path("doom3.wad")), std::string::npos) << e.what();
@@ -285,15 +345,19 @@ TEST(SweepSuites, DoomBlocksRunHeuristicsPerSeedAndEachBuilderOncePerMap) {
 // A merge block runs every pair x size x heuristic x operation x seed, a size outside a pair's
 // range is skipped, and a pair without sizes (the sponges: their level sets the count) runs once.
 TEST(SweepSuites, MergeBlocksExpandToPairSizeHeuristicOperationAndSeed) {
-  const Suite suite{"merges", "test", {}, {{{"spheres", "sponges"}, {"first", "naylor"}, {}, {50, 1'000'000'000'000}, {1, 2}, 100}}};
-  const auto jobs = expand(suite);
+  const Suite suite = suite_of(R"({"name": "merges", "merges": [{"heuristics": ["first", "naylor"], "sizes": [50, 1000000000000],
+                                    "seeds": [1, 2], "points": 100}]})");
+  experiments::Jobs jobs;
+  for (auto& j : expand(suite))
+    if (facts(*j).scene == "spheres" || facts(*j).scene == "sponges") jobs.push_back(j);
   EXPECT_EQ(jobs.size(), (1 + 1) * 2u * 4 * 2);
   std::set<std::string> keys;
-  for (const auto& j : jobs) {
+  for (const auto& job : jobs) {
+    const JobFacts j = facts(*job);
     keys.insert(j.key);
     ASSERT_TRUE(j.op.has_value());
     EXPECT_EQ(j.n, j.scene == "spheres" ? 50u : 0u);
-    const nlohmann::json id = job_identity(j);
+    const nlohmann::json id = job->identity();
     EXPECT_EQ(id["kind"], "merge");
     EXPECT_EQ(id["operands"].size(), 2u);
     // The second operand is drawn and rotated with its own seed.
@@ -309,8 +373,9 @@ TEST(SweepSuites, ExhaustiveVariantsRunBesideTheSampledDefaults) {
   if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
   for (const char* name : {"quick", "default", "full"}) {
     std::set<std::string> variants;
-    for (const auto& j : expand(find_suite(name))) {
-      const nlohmann::json id = job_identity(j);
+    for (const auto& job : expand(find_suite(name))) {
+      const JobFacts j = facts(*job);
+      const nlohmann::json id = job->identity();
       if (j.heuristic.find(':') == std::string::npos) continue;
       variants.insert(j.heuristic);
       EXPECT_EQ(id["heuristic_params"]["candidates"], 0) << j.heuristic;
@@ -327,8 +392,8 @@ TEST(SweepSuites, ExhaustiveVariantsRunBesideTheSampledDefaults) {
 TEST(SweepSuites, SizesThatMakeTheSameSceneRunOnce) {
   if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
   std::map<std::string, std::set<std::uint64_t>> sizes;
-  for (const auto& j : expand(find_suite("quick")))
-    if (j.kind() == JobKind::Draw && j.heuristic == "crystal" && j.shape == Shape::Strict && j.seed == 1)
+  for (const auto& job : expand(find_suite("quick")))
+    if (const JobFacts j = facts(*job); j.kind == "draw" && j.heuristic == "crystal" && j.shape == Shape::Strict && j.seed == 1)
       sizes[j.scene].insert(j.n);
   EXPECT_EQ(sizes["architecture"], (std::set<std::uint64_t>{100, 1000}));
   EXPECT_EQ(sizes["random-disjoint"], (std::set<std::uint64_t>{100, 300, 1000}));
@@ -338,8 +403,8 @@ TEST(SweepSuites, SizesThatMakeTheSameSceneRunOnce) {
 // catalog says which, and every run's identity carries it to the report.
 TEST(SweepSuites, RunsSayWhetherTheirSceneKeepsItsDensity) {
   std::map<std::string, bool> density;
-  for (const auto& j : expand(find_suite("smoke")))
-    if (!j.op) density[j.scene] = job_identity(j)["constant_density"];
+  for (const auto& job : expand(find_suite("smoke")))
+    if (const JobFacts j = facts(*job); !j.op) density[j.scene] = job->identity()["constant_density"];
   for (const char* grows : {"random-triangles", "saddle-grid", "orthogonal-stacks", "coplanar-heavy"})
     EXPECT_FALSE(density.at(grows)) << grows;
   for (const char* constant : {"random-disjoint", "sphere-field", "architecture", "city", "terrain"})
@@ -347,13 +412,19 @@ TEST(SweepSuites, RunsSayWhetherTheirSceneKeepsItsDensity) {
 }
 
 TEST(SweepSuites, HeuristicVariantLabelsParseAndBadOnesAreRejected) {
-  const HeuristicVariant plain = parse_heuristic_variant("crystal");
+  const HeuristicChoice plain = HeuristicChoice::parse("crystal");
   EXPECT_EQ(plain.name, "crystal");
   EXPECT_TRUE(plain.params.empty());
-  const HeuristicVariant v = parse_heuristic_variant("weighted:candidates=0,sample=64");
+  const HeuristicChoice v = HeuristicChoice::parse("weighted:candidates=0,sample=64");
+  EXPECT_EQ(v.label, "weighted:candidates=0,sample=64");
   EXPECT_EQ(v.name, "weighted");
   EXPECT_EQ(v.params, (ParamAssignments{{"candidates", "0"}, {"sample", "64"}}));
-  EXPECT_THROW(parse_heuristic_variant("weighted:candidates"), UsageError);
+  EXPECT_EQ(v.resolved.integer("candidates"), 0);
+  EXPECT_EQ(v.arguments(), " --heuristic weighted --param candidates=0 --param sample=64");
+  EXPECT_THROW(HeuristicChoice::parse("weighted:candidates"), UsageError);
+  EXPECT_THROW(HeuristicChoice::parse("weighted:sample=-1"), UsageError);
+  EXPECT_THROW(HeuristicChoice::parse("nosuch"), UsageError);
+  EXPECT_EQ(HeuristicChoice::of("weighted", {{"candidates", "0"}}).label, "weighted:candidates=0");
 }
 
 // CI gates on the quick suite, so coarse leaves and the incremental build (one job per scene, size,
@@ -362,7 +433,9 @@ TEST(SweepSuites, QuickSuiteGatesCoarseLeavesAndTheIncrementalBuildOnEveryScene)
   if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
   std::set<std::string> coarse_scenes, incremental_scenes;
   std::map<std::string, int> incremental_per_scene;
-  for (const auto& j : expand(find_suite("quick"))) {
+  for (const auto& job : expand(find_suite("quick"))) {
+    const JobFacts j = facts(*job);
+    if (j.kind != "draw") continue;
     if (j.shape == Shape::Coarse && !j.incremental) coarse_scenes.insert(j.scene);
     if (!j.incremental) continue;
     EXPECT_EQ(j.heuristic, "incremental");
@@ -374,34 +447,39 @@ TEST(SweepSuites, QuickSuiteGatesCoarseLeavesAndTheIncrementalBuildOnEveryScene)
   for (const auto& [scene, count] : incremental_per_scene) EXPECT_LE(count, 2 * 2 * 2) << scene;  // sizes x shapes x seeds
 }
 
-// Which fields are timings is declared in record.h, not guessed from a name: a field ending in
-// _seconds that is not declared stays in the metrics and is compared exactly.
+// Which fields are timings each kind declares (experiments/kind.h), not guessed from a name: a
+// field ending in _seconds that is not declared stays in the metrics and is compared exactly.
 TEST(SweepRecord, DeclaredTimingFieldsAloneAreMovedOutOfTheMetrics) {
+  const auto fields = draw_timing_fields();
   nlohmann::json metrics{{"fragments", 7}, {"build_seconds", 0.25}, {"renamed_build_seconds", 0.5}};
   nlohmann::json timings = nlohmann::json::object();
-  split_timings(metrics, timings, "");
+  split_timings(metrics, timings, "", fields);
   EXPECT_EQ(timings, (nlohmann::json{{"build_seconds", 0.25}}));
   EXPECT_EQ(metrics, (nlohmann::json{{"fragments", 7}, {"renamed_build_seconds", 0.5}}));
   nlohmann::json validation{{"seconds", 1.0}, {"rays_per_second", 2.0}, {"violations", 0}};
-  split_timings(validation, timings, "validation_");
+  split_timings(validation, timings, "validation_", fields);
   EXPECT_TRUE(timings.contains("validation_seconds") && timings.contains("validation_rays_per_second"));
   EXPECT_EQ(validation, (nlohmann::json{{"violations", 0}}));
-  EXPECT_EQ(find_timing_field("renamed_build_seconds"), nullptr);
-  EXPECT_EQ(timing_field_name(TimingKind::BuildSamples), "build_cpu_samples");
+  EXPECT_EQ(experiments::find_timing_field(fields, "renamed_build_seconds"), nullptr);
+  EXPECT_EQ(timing_field_name(fields, TimingRole::GatedSamples), "build_cpu_samples");
+  // The gate finds each kind's gated samples through the kinds' registry.
+  EXPECT_EQ(gated_timing({{"kind", "merge"}}), "merge_cpu_samples");
+  EXPECT_EQ(gated_timing({{"kind", "animate"}}), "update_cpu_samples");
+  EXPECT_EQ(gated_timing(nlohmann::json::object()), "build_cpu_samples");
 }
 
-// The run record of one job: build samples per run_job.h (short builds repeated in each batch),
+// The run record of one job: build samples per experiments/timing.h (short builds repeated in each batch),
 // the ray-shooting cross-check recorded,
 // and every timing it carries declared.
 TEST(SweepRecord, RunRecordHoldsBuildSamplesAndTheRayShootingCheck) {
   const nlohmann::json& run = tiny_report()["runs"][0];
   const auto& samples = run["timings"]["build_cpu_samples"];
-  ASSERT_EQ(samples.size(), static_cast<std::size_t>(kBuildSamples));
+  ASSERT_EQ(samples.size(), static_cast<std::size_t>(kBatches));
   // A 40- or 80-polygon build takes far less than kMinBatchSeconds, so every batch repeats it.
-  EXPECT_GT(run["timings"]["build_cpu_builds"].get<std::uint64_t>(), 2u * kBuildSamples);
+  EXPECT_GT(run["timings"]["build_cpu_builds"].get<std::uint64_t>(), 2u * kBatches);
   EXPECT_GT(run["ray_shooting"]["rays"].get<std::uint64_t>(), 0u);
   EXPECT_EQ(run["ray_shooting"]["mismatches"], 0);
-  for (const auto& [k, v] : run["timings"].items()) EXPECT_NE(find_timing_field(k), nullptr) << k;
+  for (const auto& [k, v] : run["timings"].items()) EXPECT_NE(find_timing_field(run["id"], k), nullptr) << k;
 }
 
 // A merge run: the operands' trees and the merge cost as metrics, the boundary's closure as
@@ -428,8 +506,8 @@ TEST(SweepRecord, MergeRunHoldsItsCostItsProofAndMergeSamples) {
               1000u);
     EXPECT_EQ(run["invariants"]["violations"], 0);
     EXPECT_EQ(run["invariants"]["border_edges"], 0);
-    EXPECT_EQ(run["timings"]["merge_cpu_samples"].size(), static_cast<std::size_t>(kBuildSamples));
-    for (const auto& [k, value] : run["timings"].items()) EXPECT_NE(find_timing_field(k), nullptr) << k;
+    EXPECT_EQ(run["timings"]["merge_cpu_samples"].size(), static_cast<std::size_t>(kBatches));
+    for (const auto& [k, value] : run["timings"].items()) EXPECT_NE(find_timing_field(run["id"], k), nullptr) << k;
   }
   // Aggregates group merges by pair, heuristic and operation.
   EXPECT_EQ(report["aggregates"].size(), 4u);
@@ -462,7 +540,7 @@ TEST(SweepRecord, AnimateAndOccludeRunsHoldTheirMeasuresProofsAndSamples) {
       EXPECT_GT(run["metrics"]["emitted"].get<std::uint64_t>(), 0u);
       EXPECT_GE(run["metrics"]["emitted"].get<std::uint64_t>(), run["metrics"]["seen_by_embree"].get<std::uint64_t>());
       EXPECT_GT(run["validation"]["rays"].get<std::uint64_t>(), 0u);
-      EXPECT_EQ(run["timings"]["occlude_cpu_samples"].size(), static_cast<std::size_t>(kBuildSamples));
+      EXPECT_EQ(run["timings"]["occlude_cpu_samples"].size(), static_cast<std::size_t>(kBatches));
     }
   }
   EXPECT_EQ(animate, 8u);
@@ -524,17 +602,17 @@ TEST(SweepRecord, DoomRunsHoldTheirNodesTheirChecksAndTheirSamples) {
     EXPECT_EQ(run["invariants"]["violations"], 0);
     EXPECT_FALSE(run.contains("error"));
     const auto& t = run["timings"];
-    for (const auto& [k, v] : t.items()) EXPECT_NE(find_timing_field(k), nullptr) << k;
+    for (const auto& [k, v] : t.items()) EXPECT_NE(find_timing_field(id, k), nullptr) << k;
     if (id["builder_kind"] == "heuristic") {
       EXPECT_EQ(m["mixed_leaves"], 0);
       EXPECT_TRUE(m.contains("rounding_max_shift"));
       EXPECT_EQ(run["validation"]["violations"], 0);
       EXPECT_GT(run["validation"]["rays"].get<std::uint64_t>(), 0u);
-      EXPECT_EQ(t["doom_cpu_samples"].size(), static_cast<std::size_t>(kBuildSamples));
-      EXPECT_GE(t["doom_cpu_runs"].get<std::uint64_t>(), static_cast<std::uint64_t>(kBuildSamples));
+      EXPECT_EQ(t["doom_cpu_samples"].size(), static_cast<std::size_t>(kBatches));
+      EXPECT_GE(t["doom_cpu_runs"].get<std::uint64_t>(), static_cast<std::uint64_t>(kBatches));
     } else if (id["builder_kind"] == "external") {
       EXPECT_TRUE(run["validation"].is_null());
-      EXPECT_EQ(t["builder_cpu_samples"].size(), static_cast<std::size_t>(kBuildSamples));
+      EXPECT_EQ(t["builder_cpu_samples"].size(), static_cast<std::size_t>(kBatches));
       EXPECT_NE(id["builder_version"].get<std::string>().find("ZDBSP"), std::string::npos);
     } else {
       EXPECT_EQ(id["builder_kind"], "shipped");
@@ -556,11 +634,11 @@ TEST(SweepRecord, DoomRunsHoldTheirNodesTheirChecksAndTheirSamples) {
 // BSPBENCH_PLANT_SLOWDOWN names a heuristic label, and reaches the timed builds of its Doom runs.
 TEST(SweepRecord, PlantedSlowdownOfAHeuristicSlowsItsDoomBuilds) {
   if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;
-  const auto jobs = expand(doom_only({{"freedoom2.wad"}, {"MAP01"}, {"crystal"}, {}, {1}, 1}));
-  const Job& ours = jobs.front();
-  ASSERT_EQ(ours.heuristic, "crystal");
-  const double plain = run_job(ours)["timings"]["doom_cpu_seconds"].get<double>();
-  const double planted = run_job(ours, PlantedSlowdown{"crystal", 3})["timings"]["doom_cpu_seconds"].get<double>();
+  const auto jobs = expand(doom_only(R"({"iwads": ["freedoom2.wad"], "maps": ["MAP01"], "heuristics": ["crystal"], "views": 1})"));
+  const Job& ours = *jobs.front();
+  ASSERT_EQ(facts(ours).heuristic, "crystal");
+  const double plain = ours.run({})["timings"]["doom_cpu_seconds"].get<double>();
+  const double planted = ours.run({PlantedSlowdown{"crystal", 3}})["timings"]["doom_cpu_seconds"].get<double>();
   EXPECT_GT(planted / plain, 2.0) << plain << " s, planted " << planted << " s";
 }
 
@@ -622,10 +700,10 @@ TEST(SweepShards, PartitionTheSuiteDeterministically) {
   const auto jobs = expand(find_suite("quick"));
   std::multiset<std::string> seen;
   for (std::uint32_t i = 0; i < 3; ++i)
-    for (const auto& j : shard_jobs(jobs, {i, 3})) seen.insert(j.key);
+    for (const auto& j : shard_jobs(jobs, {i, 3})) seen.insert(j->key());
   EXPECT_EQ(seen.size(), jobs.size());
   EXPECT_EQ(std::set<std::string>(seen.begin(), seen.end()).size(), jobs.size());
-  EXPECT_EQ(shard_jobs(jobs, parse_shard("1/3")).front().key, jobs[1].key);
+  EXPECT_EQ(shard_jobs(jobs, parse_shard("1/3")).front()->key(), jobs[1]->key());
   for (const char* bad : {"3/3", "1", "a/3", "1/0", "-1/3", "1/3x"}) EXPECT_THROW(parse_shard(bad), UsageError) << bad;
 }
 
@@ -715,18 +793,18 @@ TEST(MergeReports, ShardsMergeToTheUnshardedReportAndBadSetsAreRejected) {
   std::vector<NamedReport> shards;
   for (std::uint32_t i = 0; i < 3; ++i)
     shards.push_back({"shard" + std::to_string(i), run_tiny(tiny_suite(), dir, 2, Shard{i, 3})});
-  EXPECT_EQ(deterministic_view(merge_reports(shards)), deterministic_view(tiny_report()));
-  EXPECT_EQ(merge_reports(shards)["shards"].size(), 3u);
+  EXPECT_EQ(deterministic_view(combine_shards(shards)), deterministic_view(tiny_report()));
+  EXPECT_EQ(combine_shards(shards)["shards"].size(), 3u);
 
   auto duplicate = shards;
   duplicate[2] = duplicate[1];
-  EXPECT_THROW(merge_reports(duplicate), InputError);
+  EXPECT_THROW(combine_shards(duplicate), InputError);
   auto missing = shards;
   missing.pop_back();
-  EXPECT_THROW(merge_reports(missing), InputError);
+  EXPECT_THROW(combine_shards(missing), InputError);
   auto foreign = shards;
   foreign[1].report["suite"]["definition_hash"] = "0000000000000000";
-  EXPECT_THROW(merge_reports(foreign), InputError);
+  EXPECT_THROW(combine_shards(foreign), InputError);
   fs::remove_all(dir);
 }
 
@@ -774,7 +852,7 @@ TEST_F(RegressGate, IdenticalReportPasses) {
   EXPECT_EQ(r.runs_compared, 16u);
   EXPECT_GT(r.values_compared, 16u * 20);
   EXPECT_EQ(r.timing_groups, 4u);  // 2 scenes x 2 heuristics, each pooling 2 sizes x 2 seeds
-  EXPECT_EQ(r.timing_samples, 16u * kBuildSamples);
+  EXPECT_EQ(r.timing_samples, 16u * kBatches);
 }
 
 TEST_F(RegressGate, OneChangedFragmentCountFails) {
@@ -930,7 +1008,7 @@ TEST(SweepReport, ReadingRejectsOtherSchemasVersionsAndDamagedRecords) {
   fs::remove_all(dir);
 }
 
-// --- the benchmark gate (sweep/bench_gate.h) -----------------------------------------------------
+// --- the benchmark gate (gate/bench_gate.h) -----------------------------------------------------
 
 namespace {
 
@@ -952,14 +1030,14 @@ nlohmann::json bench_output(double build_vs_embree, double speedup, double fragm
   return doc;
 }
 
-bool any_change(const bsp::sweep::RegressResult& r, const std::string& what, const std::string& field) {
+bool any_change(const bsp::gate::RegressResult& r, const std::string& what, const std::string& field) {
   return std::any_of(r.changes.begin(), r.changes.end(), [&](const auto& c) { return c.what == what && c.field == field; });
 }
 
 }  // namespace
 
 TEST(BenchGate, IdenticalOutputPassesAndComparesEveryJudgedCounter) {
-  const auto r = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.8, 1e5), {});
+  const auto r = bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.8, 1e5), {});
   EXPECT_FALSE(r.failed());
   EXPECT_EQ(r.runs_compared, 2u);
   // build_vs_embree, speedup, build_peak_vs_tree, fragments, bytes; traverse_vs_sort, fragments
@@ -967,42 +1045,42 @@ TEST(BenchGate, IdenticalOutputPassesAndComparesEveryJudgedCounter) {
 }
 
 TEST(BenchGate, RatioWorseByTheToleranceFailsAndASmallerDriftPasses) {
-  EXPECT_TRUE(any_change(bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(12, 1.8, 1e5), {}),
+  EXPECT_TRUE(any_change(bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(12, 1.8, 1e5), {}),
                          "worse", "build_vs_embree"));
-  EXPECT_FALSE(bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(11.5, 1.8, 1e5), {}).failed());
+  EXPECT_FALSE(bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(11.5, 1.8, 1e5), {}).failed());
   // A speed-up is better when higher; losing it is noted, not failed (the second core is shared).
-  const auto lost_core = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.0, 1e5), {});
+  const auto lost_core = bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.0, 1e5), {});
   EXPECT_TRUE(any_change(lost_core, "worse", "speedup"));
   EXPECT_FALSE(lost_core.failed());
 }
 
 TEST(BenchGate, ABuildThatHoldsMoreMemoryFails) {
-  const auto r = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5, 1.9), bench_output(8, 1.8, 1e5, 3.8), {});
+  const auto r = bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5, 1.9), bench_output(8, 1.8, 1e5, 3.8), {});
   EXPECT_TRUE(r.failed());
   EXPECT_TRUE(any_change(r, "worse", "build_peak_vs_tree"));
 }
 
 TEST(BenchGate, BetterRatioIsANoteNotAFailure) {
-  const auto r = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(4, 1.8, 1e5), {});
+  const auto r = bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(4, 1.8, 1e5), {});
   EXPECT_FALSE(r.failed());
   EXPECT_TRUE(any_change(r, "better", "build_vs_embree"));
 }
 
 TEST(BenchGate, ChangedTreeOrMissingBenchmarkFails) {
-  EXPECT_TRUE(any_change(bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.8, 1e5 + 1), {}),
+  EXPECT_TRUE(any_change(bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.8, 1e5 + 1), {}),
                          "changed", "fragments"));
   auto fewer = bench_output(8, 1.8, 1e5);
   fewer["benchmarks"].erase(1);
-  const auto r = bsp::sweep::compare_benchmarks(bench_output(8, 1.8, 1e5), fewer, {});
+  const auto r = bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), fewer, {});
   EXPECT_TRUE(r.failed());
   EXPECT_TRUE(any_change(r, "missing benchmark", ""));
   // The other way round the extra benchmark is new, not a regression.
-  EXPECT_FALSE(bsp::sweep::compare_benchmarks(fewer, bench_output(8, 1.8, 1e5), {}).failed());
+  EXPECT_FALSE(bsp::gate::compare_benchmarks(fewer, bench_output(8, 1.8, 1e5), {}).failed());
 }
 
 TEST(BenchGate, ReportsAreNotBenchmarkOutputs) {
-  EXPECT_TRUE(bsp::sweep::is_benchmark_output(bench_output(8, 1.8, 1e5)));
-  EXPECT_FALSE(bsp::sweep::is_benchmark_output(nlohmann::json{{"schema", "bspbench-report"}, {"runs", nlohmann::json::array()}}));
+  EXPECT_TRUE(bsp::gate::is_benchmark_output(bench_output(8, 1.8, 1e5)));
+  EXPECT_FALSE(bsp::gate::is_benchmark_output(nlohmann::json{{"schema", "bspbench-report"}, {"runs", nlohmann::json::array()}}));
 }
 
 // The complete example of analysis/SUITE_SCHEMA.md (its one ```json block), read as if it lay in
@@ -1020,9 +1098,10 @@ TEST(SweepSuiteFile, SchemaExampleExpandsToWhatItsKeysAsk) {
   std::map<std::string, std::size_t> kinds;
   std::set<std::string> drawn_heuristics;
   std::size_t incremental = 0, mesh = 0, city = 0;
-  for (const Job& j : expand(suite)) {
-    ++kinds[std::string(job_kind_name(j.kind()))];
-    if (j.kind() != JobKind::Draw) continue;
+  for (const auto& job : expand(suite)) {
+    const JobFacts j = facts(*job);
+    ++kinds[j.kind];
+    if (j.kind != "draw") continue;
     if (j.incremental) {
       ++incremental;
       continue;
@@ -1054,15 +1133,15 @@ TEST(SweepSuiteFile, SchemaExampleExpandsToWhatItsKeysAsk) {
 }
 
 // The report's tables take each drawing run's timings, like its metrics, from
-// analysis/metric_docs.json; a timing added to run_job without its line there would show up
+// analysis/metric_docs.json; a timing added to a drawing run without its line there would show up
 // unexplained (tests/test_metrics.cpp checks the metrics).
 TEST(SweepRecord, EveryTimingOfADrawingRunIsDocumentedForTheReport) {
   std::ifstream in(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/metric_docs.json");
   const nlohmann::json docs = nlohmann::json::parse(in)["metrics"];
   const auto jobs = expand(find_suite("smoke"));
-  const auto draw = std::find_if(jobs.begin(), jobs.end(), [](const Job& j) { return j.kind() == JobKind::Draw; });
+  const auto draw = std::find_if(jobs.begin(), jobs.end(), [](const JobPtr& j) { return j->kind() == "draw"; });
   ASSERT_NE(draw, jobs.end());
-  const nlohmann::json run = run_job(*draw);
+  const nlohmann::json run = (*draw)->run({});
   std::size_t checked = 0;
   for (const auto& [key, value] : run["timings"].items()) {
     if (!value.is_number()) continue;  // the samples behind a median are not shown as a metric
@@ -1070,4 +1149,72 @@ TEST(SweepRecord, EveryTimingOfADrawingRunIsDocumentedForTheReport) {
     ++checked;
   }
   EXPECT_GE(checked, 4u);
+}
+
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The section of a Markdown document under the heading "## TITLE", up to the next "## ".
+std::string markdown_section(const std::string& doc, std::string_view title) {
+  const std::string heading = "\n## " + std::string(title) + "\n";
+  const auto begin = doc.find(heading);
+  if (begin == std::string::npos) return {};
+  const auto end = doc.find("\n## ", begin + heading.size());
+  return doc.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+}
+
+// What a kind's documentation lacks: its record's section of analysis/SCHEMA.md (naming each of its
+// timing fields) and its suite key in analysis/SUITE_SCHEMA.md.
+std::vector<std::string> undocumented(const Kind& kind, const std::string& schema, const std::string& suite_schema) {
+  std::vector<std::string> missing;
+  const std::string section = markdown_section(schema, kind.schema_section);
+  if (section.empty()) missing.push_back("SCHEMA.md section " + std::string(kind.schema_section));
+  const auto quoted = [](std::string_view open, std::string_view name, std::string_view close) {
+    return std::string(open).append(name).append(close);
+  };
+  for (const auto& f : kind.timings)
+    if (section.find(quoted("\"", f.name, "\"")) == std::string::npos) missing.emplace_back(f.name);
+  if (suite_schema.find(quoted("| `", kind.suite_key, "` |")) == std::string::npos)
+    missing.push_back(quoted("SUITE_SCHEMA.md key ", kind.suite_key, ""));
+  return missing;
+}
+
+}  // namespace
+
+// Every kind's record is documented where readers look (analysis/SCHEMA.md, one section per kind
+// naming every timing field the kind declares) and its blocks in analysis/SUITE_SCHEMA.md; and the
+// check notices a timing left out of the docs.
+TEST(SweepRecord, RecordsDocumentEveryKind) {
+  const std::string schema = read_text(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/SCHEMA.md");
+  const std::string suite_schema = read_text(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/SUITE_SCHEMA.md");
+  ASSERT_FALSE(schema.empty());
+  for (const Kind* kind : kinds()) EXPECT_EQ(undocumented(*kind, schema, suite_schema), std::vector<std::string>{}) << kind->name;
+  std::string planted = schema;
+  const auto at = planted.find("\"merge_cpu_merges\"", planted.find("\n## MERGE RUN\n"));
+  ASSERT_NE(at, std::string::npos);
+  planted.replace(at, 18, "\"merges_timed\"");
+  EXPECT_EQ(undocumented(merge_kind(), planted, suite_schema), std::vector<std::string>{"merge_cpu_merges"});
+}
+
+// The kinds' registry: each kind once, found by its name, with a parser, a suite key of its own and
+// exactly one gated timing; a record of an unknown kind is nobody's.
+TEST(SweepRecord, EveryKindIsRegisteredOnceWithOneGatedTiming) {
+  std::set<std::string_view> names, keys;
+  for (const Kind* kind : kinds()) {
+    EXPECT_TRUE(names.insert(kind->name).second) << kind->name;
+    EXPECT_TRUE(keys.insert(kind->suite_key).second) << kind->suite_key;
+    EXPECT_EQ(find_kind(kind->name), kind);
+    EXPECT_NE(kind->parse, nullptr);
+    EXPECT_EQ(std::count_if(kind->timings.begin(), kind->timings.end(),
+                            [](const TimingField& f) { return f.role == TimingRole::GatedSamples; }),
+              1)
+        << kind->name;
+  }
+  EXPECT_EQ(find_kind("sculpt"), nullptr);
+  EXPECT_EQ(kind_of({{"kind", "sculpt"}}), nullptr);
+  EXPECT_EQ(kind_of({{"kind", 3}}), nullptr);
 }

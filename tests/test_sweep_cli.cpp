@@ -20,10 +20,12 @@
 #include <sstream>
 
 #include "mesh_scenes.h"
-#include "sweep/record.h"
-#include "sweep/report.h"
+#include "results/record.h"
+#include "results/report.h"
+#include "suite/suite_file.h"
 #include "sweep/runner.h"
 
+using namespace bsp::results;
 using namespace bsp::sweep;
 namespace fs = std::filesystem;
 
@@ -51,10 +53,13 @@ class SweepCli : public ::testing::Test {
   // A small report made through the library: two scenes, two heuristics, two sizes, two seeds; and
   // merges of one solid pair, two heuristics, two operations, two sizes, two seeds.
   fs::path small_report() {
-    const Suite suite{"tiny", "test suite",
-                      {{{"random-triangles", "random-disjoint"}, {"first", "random"}, {40, 80}, {}, {1, 2},
-                        {bsp::Shape::Strict}, {1, 0, 1}}},
-                      {{{"spheres"}, {"first", "naylor"}, {bsp::SetOp::Union, bsp::SetOp::Difference}, {50, 100}, {1, 2}, 500}}};
+    const bsp::suite::Suite suite = bsp::suite::parse_suite_file(
+        R"({"name": "tiny", "summary": "test suite",
+            "blocks": [{"scenes": ["random-triangles", "random-disjoint"], "heuristics": ["first", "random"],
+                        "sizes": [40, 80], "seeds": [1, 2]}],
+            "merges": [{"pairs": ["spheres"], "heuristics": ["first", "naylor"], "ops": ["union", "difference"],
+                        "sizes": [50, 100], "seeds": [1, 2], "points": 500}]})",
+        "tiny.json");
     SweepOptions o;
     o.journal_dir = (dir_ / "journal").string();
     const fs::path path = dir_ / "small.json";
@@ -167,7 +172,7 @@ TEST_F(SweepCli, RegressExitsZeroOnIdenticalOneOnChangedAndTwoOnBadInput) {
 }
 
 // The gate on real sweeps: the smoke suite run twice, the second with one heuristic's timed builds
-// planted PLANT_FACTOR times slower (BSPBENCH_PLANT_SLOWDOWN, sweep/run_job.h). Every group of that
+// planted PLANT_FACTOR times slower (BSPBENCH_PLANT_SLOWDOWN, experiments/timing.h). Every group of that
 // heuristic (one per scene) fails as slower, and no other group does (results are the gate's other
 // half, tested elsewhere). A bad planting value is a one-line usage error.
 TEST_F(SweepCli, PlantedSlowdownOfOneHeuristicFailsExactlyItsGroups) {
@@ -280,7 +285,7 @@ TEST_F(SweepCli, ReportRendersTheSegmentBoundAndDoomSections) {
   EXPECT_NE(page.find("<h3>Environment</h3>"), std::string::npos);
 }
 
-// ---- Suites users write (sweep/suite_file.h, analysis/SUITE_SCHEMA.md) ----
+// ---- Suites users write (suite/suite_file.h, analysis/SUITE_SCHEMA.md) ----
 
 namespace {
 

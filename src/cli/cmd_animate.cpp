@@ -16,7 +16,7 @@
 #include "common/errors.h"
 #include "dynamic/updater.h"
 #include "split/registry.h"
-#include "sweep/animation_run.h"
+#include "experiments/animate/animation_run.h"
 
 namespace bsp::cli {
 
@@ -69,11 +69,11 @@ int run(Args& args) {
   const Animation animation = input ? Animation(spec, scene_or_file(spec.scene, {}, "--input")) : Animation(spec);
   auto updater = make_updater(strategy, make_splitter(heuristic, params, seed),
                               make_splitter(object_heuristic, object_params, seed), build);
-  sweep::AnimationRunSettings settings;
+  experiments::AnimationRunSettings settings;
   settings.views = views;
   settings.check_every = every;
   settings.drift_every = drift_every;
-  const sweep::AnimationRun run = sweep::run_animation(
+  const experiments::AnimationRun run = experiments::run_animation(
       animation, *updater, [&] { return make_splitter(heuristic, params, seed); }, build, settings);
   nlohmann::json out = {{"animation", animation.describe()},
                         {"strategy", strategy},

@@ -1,5 +1,5 @@
 // bspbench doom: our heuristics and the installed node builders on the maps of a Doom WAD, side by
-// side (sweep/doom_run.h): splits, segs, subsectors, nodes, depth and CPU time per map and in
+// side (experiments/doom/map_nodes.h): splits, segs, subsectors, nodes, depth and CPU time per map and in
 // total, every output proved structurally and ours also against Embree. Exit code 1 when any of
 // our outputs fails a check.
 #include <algorithm>
@@ -14,18 +14,18 @@
 #include "common/errors.h"
 #include "io/wad.h"
 #include "split/registry.h"
-#include "sweep/doom_job.h"
-#include "sweep/doom_run.h"
-#include "sweep/node_builders.h"
+#include "experiments/doom/iwads.h"
+#include "experiments/doom/map_nodes.h"
+#include "experiments/doom/node_builders.h"
 
 namespace bsp::cli {
 
 namespace {
 
-using sweep::DoomBuilder;
-using sweep::DoomRun;
-using sweep::DoomRunSettings;
-using sweep::DoomTotals;
+using experiments::DoomBuilder;
+using experiments::DoomRun;
+using experiments::DoomRunSettings;
+using experiments::DoomTotals;
 
 std::vector<std::string> split_list(const std::string& text, char sep) {
   std::vector<std::string> out;
@@ -38,7 +38,7 @@ std::vector<std::string> split_list(const std::string& text, char sep) {
 // A Doom preset, or NAME or NAME:k=v:k=v, each name a registered heuristic and each parameter one
 // it has.
 DoomBuilder heuristic_builder(const std::string& spec) {
-  if (const auto preset = sweep::doom_preset(spec)) return *preset;
+  if (const auto preset = experiments::doom_preset(spec)) return *preset;
   const auto parts = split_list(spec, ':');
   if (parts.empty()) throw UsageError("--heuristics has an empty entry");
   DoomBuilder b{DoomBuilder::Kind::Heuristic, find_heuristic(parts[0]).name, {}, {}};
@@ -51,12 +51,12 @@ std::vector<DoomBuilder> builders_from(const std::string& heuristics_text, const
   std::vector<DoomBuilder> out;
   if (heuristics_text == "all") {
     for (const auto& h : heuristics()) out.push_back({DoomBuilder::Kind::Heuristic, h.name, {}, {}});
-    for (const auto& p : sweep::doom_presets()) out.push_back(*sweep::doom_preset(p.name));
+    for (const auto& p : experiments::doom_presets()) out.push_back(*experiments::doom_preset(p.name));
   } else {
     for (const auto& spec : split_list(heuristics_text, ',')) out.push_back(heuristic_builder(spec));
   }
   for (const auto& name : split_list(builders_text, ',')) {
-    if (sweep::find_builder(name).path.empty()) throw UsageError("node builder " + name + " is not installed");
+    if (experiments::find_builder(name).path.empty()) throw UsageError("node builder " + name + " is not installed");
     out.push_back({DoomBuilder::Kind::External, name, {}, {}});
   }
   out.push_back({DoomBuilder::Kind::Shipped, "shipped", {}, {}});
@@ -76,7 +76,7 @@ std::vector<std::string> maps_from(const Wad& wad, const std::string& text, cons
 // installs them (or in BSPBENCH_DOOM_DIR), as Doom ports search DOOMWADDIR: --iwad freedoom2.wad.
 std::string resolve_wad(const std::string& name) {
   if (name.find('/') != std::string::npos || std::filesystem::exists(name)) return name;
-  const auto installed = std::filesystem::path(sweep::doom_data_dir()) / name;
+  const auto installed = std::filesystem::path(experiments::doom_data_dir()) / name;
   return std::filesystem::exists(installed) ? installed.string() : name;
 }
 
@@ -108,17 +108,17 @@ int run(Args& args) {
   for (const auto& name : maps) read.push_back(read_map(wad, name, iwad));
   std::vector<DoomRun> runs;
   for (const DoomMap& map : read)
-    for (const DoomBuilder& b : builders) runs.push_back(sweep::run_doom(iwad, wad, map, b, settings));
-  const std::vector<DoomTotals> totals = sweep::doom_totals(runs);
+    for (const DoomBuilder& b : builders) runs.push_back(experiments::run_doom(iwad, wad, map, b, settings));
+  const std::vector<DoomTotals> totals = experiments::doom_totals(runs);
   bool ours_ok = true;
   for (const DoomRun& r : runs) ours_ok &= r.kind != DoomBuilder::Kind::Heuristic || r.ok;
   if (json) {
     nlohmann::json out = {{"iwad", iwad}, {"maps", maps}, {"seed", settings.seed}, {"builders", nlohmann::json::object()},
                           {"runs", nlohmann::json::array()}, {"totals", nlohmann::json::array()}};
     for (const DoomBuilder& b : builders)
-      if (b.kind == DoomBuilder::Kind::External) out["builders"][b.name] = sweep::find_builder(b.name).version;
-    for (const DoomRun& r : runs) out["runs"].push_back(sweep::to_json(r));
-    for (const DoomTotals& t : totals) out["totals"].push_back(sweep::to_json(t));
+      if (b.kind == DoomBuilder::Kind::External) out["builders"][b.name] = experiments::find_builder(b.name).version;
+    for (const DoomRun& r : runs) out["runs"].push_back(experiments::to_json(r));
+    for (const DoomTotals& t : totals) out["totals"].push_back(experiments::to_json(t));
     std::cout << out.dump() << "\n";
   } else {
     print_totals(totals);

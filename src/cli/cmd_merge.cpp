@@ -10,11 +10,10 @@
 #include "cli/commands.h"
 #include "cli/run_args.h"
 #include "common/errors.h"
+#include "experiments/heuristic_choice.h"
+#include "experiments/merge/set_operation.h"
 #include "io/atomic_file.h"
 #include "io/obj_writer.h"
-#include "solid/solid_build.h"
-#include "split/registry.h"
-#include "validate/solid_check.h"
 
 namespace bsp::cli {
 
@@ -67,7 +66,7 @@ int run(Args& args) {
   const auto a_params = args.options("--a-param"), b_params = args.options("--b-param");
   const auto a_offset = args.option("--a-offset"), b_offset = args.option("--b-offset");
   const SetOp op = parse_set_op(args.required("--op"));
-  const std::string heuristic = args.option("--heuristic").value_or("naylor");
+  const std::string heuristic_name = args.option("--heuristic").value_or("naylor");
   ParamAssignments params;
   for (const auto& kv : args.options("--param")) params.push_back(parse_assignment(kv));
   const auto seed = static_cast<std::uint64_t>(args.integer("--seed", 0, 9'000'000'000'000'000LL).value_or(1));
@@ -79,35 +78,25 @@ int run(Args& args) {
   if (out_path && !out_path->ends_with(".obj")) throw UsageError("--out must name a .obj file, not '" + *out_path + "'");
 
   const Scene a = operand(a_spec, a_params, "--a", a_offset), b = operand(b_spec, b_params, "--b", b_offset);
-  const Box box = solid_box(bounds(a), bounds(b));
-  const double eps = Tolerance::for_extent(box.diagonal()).plane_eps;
-  require_closed_solid(a.polygons, eps, a.name);
-  require_closed_solid(b.polygons, eps, b.name);
-  const ExactSolid ea(a.polygons), eb(b.polygons);
-  for (const auto& [scene, exact] : {std::pair{&a, &ea}, std::pair{&b, &eb}})
-    if (const std::size_t n = exact->self_intersecting_pairs(); n > 0)
-      throw InputError(scene->name + ": not the boundary of a solid: " + std::to_string(n) +
-                       " pairs of faces intersect");
-  auto splitter = make_splitter(heuristic, params, seed);
-  const SolidBuild sa = build_solid(a.polygons, *splitter, box);
-  const SolidBuild sb = build_solid(b.polygons, *splitter, box);
-  MergeStats stats;
-  const SolidTree result = merge(sa.solid, sb.solid, op, &stats);
-  const SolidCheck check = check_set_operation(result, ea, eb, a.polygons, b.polygons, op, settings);
+  const auto heuristic = experiments::HeuristicChoice::of(heuristic_name, params);
+  const auto splitter = heuristic.splitter(seed);
+  const experiments::SetOperationRun run = experiments::run_set_operation(a, b, op, *splitter, settings);
+  const SolidTree& result = run.result;
+  const SolidCheck& check = run.check;
 
   nlohmann::json out = {{"op", set_op_name(op)},
-                        {"heuristic", heuristic},
-                        {"heuristic_params", ParamSet::resolve(find_heuristic(heuristic).params, params, heuristic).to_json()},
+                        {"heuristic", heuristic.name},
+                        {"heuristic_params", heuristic.resolved.to_json()},
                         {"seed", seed},
-                        {"a", operand_json(a, sa)},
-                        {"b", operand_json(b, sb)},
-                        {"merge", to_json(stats)},
+                        {"a", operand_json(a, run.operands.a)},
+                        {"b", operand_json(b, run.operands.b)},
+                        {"merge", to_json(run.stats)},
                         {"check", to_json(check)}};
   if (out_path) {
     IndexedMesh mesh;
     check_boundary(solid_boundary(result), result.tol.plane_eps, &mesh);
     write_file_atomically(*out_path, to_obj(mesh, "bspbench merge " + std::string(set_op_name(op)) + " of " + a.name +
-                                                      " and " + b.name + " (" + heuristic + ")"));
+                                                      " and " + b.name + " (" + heuristic.name + ")"));
   }
   if (json) {
     std::cout << out.dump() << "\n";

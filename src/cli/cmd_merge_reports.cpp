@@ -4,8 +4,8 @@
 
 #include "cli/commands.h"
 #include "common/errors.h"
-#include "sweep/merge.h"
-#include "sweep/report.h"
+#include "results/shards.h"
+#include "results/report.h"
 
 namespace bsp::cli {
 
@@ -16,10 +16,10 @@ int run(Args& args) {
   const std::vector<std::string> files = args.positional();
   args.finish();
   if (files.empty()) throw UsageError("give the shards' report files");
-  std::vector<sweep::NamedReport> inputs;
-  for (const auto& f : files) inputs.push_back({f, sweep::read_report(f)});
-  const nlohmann::json merged = sweep::merge_reports(inputs);
-  sweep::write_report(out, merged);
+  std::vector<results::NamedReport> inputs;
+  for (const auto& f : files) inputs.push_back({f, results::read_report(f)});
+  const nlohmann::json merged = results::combine_shards(inputs);
+  results::write_report(out, merged);
   std::cout << "merge-reports: wrote " << out << ": " << merged["shards"].size() << " shards, "
             << merged["summary"]["runs"] << " runs\n";
   return 0;

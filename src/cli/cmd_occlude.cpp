@@ -13,7 +13,7 @@
 #include "common/errors.h"
 #include "cull/occlusion.h"
 #include "metrics/traversal_cost.h"
-#include "sweep/occlusion_run.h"
+#include "experiments/occlude/occlusion_run.h"
 
 namespace bsp::cli {
 
@@ -62,7 +62,7 @@ int run(Args& args) {
       eye ? std::vector<Frustum>{view_from(tree.bounds, *eye, look, fov_x, fov_y)} : metric_views(tree.bounds, views);
   bool ok = true;
   nlohmann::json per_view = nlohmann::json::array();
-  for (const Frustum& f : frusta) per_view.push_back(sweep::occlusion_view(tree, occluder, f, check, ok));
+  for (const Frustum& f : frusta) per_view.push_back(experiments::occlusion_view(tree, occluder, f, check, ok));
   nlohmann::json out = describe_run(scene, t);
   out["fragments"] = tree.fragments.size();
   out["subtree_bounds_cpu_seconds"] = setup_seconds;

@@ -1,37 +1,37 @@
-// bspbench regress: the regression gate between two reports (sweep/regress.h says what is compared).
+// bspbench regress: the regression gate between two reports (gate/regress.h says what is compared).
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "sweep/bench_gate.h"
-#include "sweep/regress.h"
-#include "sweep/report.h"
+#include "gate/bench_gate.h"
+#include "gate/regress.h"
+#include "results/report.h"
 
 namespace bsp::cli {
 
 namespace {
 
-// Whether the baseline is a Google Benchmark output (judged by sweep/bench_gate.h) rather than a
+// Whether the baseline is a Google Benchmark output (judged by gate/bench_gate.h) rather than a
 // sweep report; anything unreadable goes to the report reader, whose error names the problem.
 bool is_benchmark_file(const std::string& path) {
   std::ifstream in(path);
   const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
-  return !doc.is_discarded() && sweep::is_benchmark_output(doc);
+  return !doc.is_discarded() && gate::is_benchmark_output(doc);
 }
 
 int run(Args& args) {
   const std::string baseline = args.required("--baseline");
   const std::string current = args.required("--current");
-  sweep::RegressOptions options;
+  gate::RegressOptions options;
   options.time_tolerance = args.real("--time-tolerance").value_or(options.time_tolerance);
   options.alpha = args.real("--alpha").value_or(options.alpha);
   args.finish();
   const auto result =
       is_benchmark_file(baseline)
-          ? sweep::compare_benchmarks(sweep::read_benchmark_output(baseline), sweep::read_benchmark_output(current), options)
-          : sweep::compare_reports(sweep::read_report(baseline), sweep::read_report(current), options);
-  sweep::print_regress(result, std::cout);
+          ? gate::compare_benchmarks(gate::read_benchmark_output(baseline), gate::read_benchmark_output(current), options)
+          : gate::compare_reports(results::read_report(baseline), results::read_report(current), options);
+  gate::print_regress(result, std::cout);
   return result.failed() ? 1 : 0;
 }
 

@@ -17,8 +17,8 @@
 
 #include "cli/commands.h"
 #include "common/errors.h"
-#include "sweep/regress.h"
-#include "sweep/report.h"
+#include "gate/regress.h"
+#include "results/report.h"
 
 namespace bsp::cli {
 
@@ -59,17 +59,17 @@ int spawn(const std::vector<std::string>& argv) {
 // The gate's comparison of the two reports, for the page's "changes" section: written into the
 // output directory (temporary file, then rename) so it is kept beside the page it explains.
 std::string write_comparison(const std::string& baseline, const std::string& current, const std::string& out) {
-  sweep::RegressOptions options;
-  options.match = sweep::RunMatch::Command;  // a changed default parameter pairs its runs, not drops them
-  const sweep::RegressResult result =
-      sweep::compare_reports(sweep::read_report(baseline), sweep::read_report(current), options);
+  gate::RegressOptions options;
+  options.match = gate::RunMatch::Command;  // a changed default parameter pairs its runs, not drops them
+  const gate::RegressResult result =
+      gate::compare_reports(results::read_report(baseline), results::read_report(current), options);
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw InputError(out + ": cannot create the output directory (" + ec.message() + ")");
   const fs::path path = fs::path(out) / "comparison.json";
   const fs::path tmp = fs::path(out) / "comparison.json.tmp";
   std::ofstream f(tmp);
-  f << sweep::to_json(result).dump(1) << "\n";
+  f << gate::to_json(result).dump(1) << "\n";
   f.close();
   if (!f) throw InputError(tmp.string() + ": cannot write");
   fs::rename(tmp, path, ec);
@@ -85,7 +85,7 @@ int run(Args& args) {
   args.finish();
   if (format && *format != "csv" && *format != "markdown" && *format != "latex")
     throw UsageError("--format must be csv, markdown or latex, not '" + *format + "'");
-  sweep::read_report(in);  // a bad report is reported here, in one line, not as a Python traceback
+  results::read_report(in);  // a bad report is reported here, in one line, not as a Python traceback
   const char* python = std::getenv("BSPBENCH_PYTHON");
   std::vector<std::string> argv = {python ? python : kDefaultPython, find_script().string(), "--in", in, "--out", out};
   if (baseline) {

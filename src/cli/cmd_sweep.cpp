@@ -1,5 +1,5 @@
 // bspbench sweep: run a suite (or one shard of it) and write the report. The environment variable
-// BSPBENCH_PLANT_SLOWDOWN=heuristic:factor is for tests only (sweep/run_job.h): it slows one
+// BSPBENCH_PLANT_SLOWDOWN=heuristic:factor is for tests only (experiments/timing.h): it slows one
 // heuristic's timed builds down, so the regression gate can be shown to catch it.
 #include <unistd.h>
 
@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "sweep/record.h"
-#include "sweep/report.h"
+#include "results/record.h"
+#include "results/report.h"
 #include "sweep/runner.h"
-#include "sweep/suite_catalog.h"
+#include "suite/catalog.h"
 
 namespace bsp::cli {
 
@@ -32,7 +32,7 @@ void summarize(const nlohmann::json& report, const std::string& out) {
     std::cerr << "sweep: job " << f["id"]["command"].get<std::string>() << " failed: " << f["error"].get<std::string>()
               << "\n";
   for (const auto& r : report["runs"]) {
-    if (!sweep::judged_for_violations(r["id"])) continue;  // facts about another builder's nodes
+    if (!results::judged_for_violations(r["id"])) continue;  // facts about another builder's nodes
     const bool broken = r["invariants"]["violations"] != 0 ||
                         (r["validation"].is_object() && r["validation"]["violations"] != 0) ||
                         (r.contains("ray_shooting") && r["ray_shooting"].is_object() &&
@@ -45,20 +45,20 @@ int run(Args& args) {
   const std::string suite_name = args.required("--suite");
   sweep::SweepOptions options;
   options.threads = static_cast<int>(args.integer("--threads", 1, 1024).value_or(0));
-  if (const auto shard = args.option("--shard")) options.shard = sweep::parse_shard(*shard);
+  if (const auto shard = args.option("--shard")) options.shard = suite::parse_shard(*shard);
   const std::string out = args.option("--out").value_or("results/report.json");
   const auto journal_dir = args.option("--journal-dir");
   options.fresh = args.flag("--fresh");
   args.finish();
-  if (const char* plant = std::getenv("BSPBENCH_PLANT_SLOWDOWN")) options.plant = sweep::parse_planted_slowdown(plant);
-  const sweep::Suite suite = sweep::find_suite(suite_name);
+  if (const char* plant = std::getenv("BSPBENCH_PLANT_SLOWDOWN")) options.plant = experiments::parse_planted_slowdown(plant);
+  const suite::Suite suite = suite::find_suite(suite_name);
   options.journal_dir = journal_dir.value_or((std::filesystem::path(out).parent_path() / "journal").string());
   // std::clog, not std::cerr: the same stderr, but a stream whose buffer no mesh reader swaps out
   // while a job reads a file (io/mesh_reader_cgal.cpp quiets CGAL through std::cerr).
   options.log = &std::clog;
   options.log_is_terminal = ::isatty(STDERR_FILENO) != 0;
   const nlohmann::json report = sweep::run_sweep(suite, options);
-  sweep::write_report(out, report);
+  results::write_report(out, report);
   summarize(report, out);
   return 0;
 }
@@ -71,7 +71,7 @@ Command sweep_command() {
           "run a suite of builds (scenes x heuristics x seeds x sizes), resumable, and write its report", run,
           {{"--suite NAME|FILE.json",
             "a built-in suite: smoke, quick, default, merge, dynamic, occlusion, segments, doom or full "
-            "(src/sweep/suite.h; README lists them with run times); or your own suite file, taken as a file when it "
+            "(analysis/suites/NAME.json; docs/results/suites.md gives their run times); or your own suite file, taken as a file when it "
             "ends in .json or holds a '/' (analysis/SUITE_SCHEMA.md)"},
            {"--threads N", "jobs run at once (default: OMP_NUM_THREADS or the core count)"},
            {"--shard i/N", "run only share i of N (0-based) of the suite's jobs; merge with merge-reports"},

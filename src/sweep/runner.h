@@ -11,29 +11,29 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "sweep/job.h"
-#include "sweep/run_job.h"
-#include "sweep/suite.h"
+#include "experiments/job.h"
+#include "suite/expand.h"
+#include "suite/suite.h"
 
 namespace bsp::sweep {
 
 struct SweepOptions {
   int threads = 0;  // 0: OpenMP's default (OMP_NUM_THREADS or the core count)
-  std::optional<Shard> shard;
+  std::optional<suite::Shard> shard;
   // The journal lives here, in a file named after the suite, its definition hash, this executable's
   // hash and the shard, so only the same command of the same build resumes it.
   std::string journal_dir = "results/journal";
   bool fresh = false;  // discard the journal first
   std::ostream* log = nullptr;  // progress and notes; nullptr for silence
   bool log_is_terminal = false;
-  std::optional<PlantedSlowdown> plant;  // TEST ONLY (run_job.h); named in the journal and the report
+  std::optional<experiments::PlantedSlowdown> plant;  // TEST ONLY (experiments/timing.h); named in the journal and the report
 };
 
-// The report (report.h). A job that throws is listed under "failures" and not journaled, so the
+// The report (results/report.h). A job that throws is listed under "failures" and not journaled, so the
 // next run retries it. Throws InputError when the journal cannot be read or written.
-nlohmann::json run_sweep(const Suite& suite, const SweepOptions& options);
+nlohmann::json run_sweep(const suite::Suite& suite, const SweepOptions& options);
 
 // Where run_sweep keeps the journal for these options.
-std::string journal_path(const Suite& suite, const SweepOptions& options);
+std::string journal_path(const suite::Suite& suite, const SweepOptions& options);
 
 }  // namespace bsp::sweep

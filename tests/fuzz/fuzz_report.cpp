@@ -11,9 +11,9 @@
 #include <string>
 
 #include "common/errors.h"
-#include "sweep/merge.h"
-#include "sweep/regress.h"
-#include "sweep/report.h"
+#include "results/shards.h"
+#include "gate/regress.h"
+#include "results/report.h"
 
 namespace {
 
@@ -36,16 +36,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   nlohmann::json report;
   try {
-    report = sweep::read_report(path);
+    report = results::read_report(path);
   } catch (const InputError&) {
   }
   std::remove(path.c_str());
   if (report.is_null()) return 0;
   expect_accepted_or_user_error([&] {
     std::ostringstream out;
-    sweep::print_regress(sweep::compare_reports(report, report, {}), out);
+    gate::print_regress(gate::compare_reports(report, report, {}), out);
   });
-  expect_accepted_or_user_error([&] { sweep::merge_reports({{"a.json", report}}); });
-  expect_accepted_or_user_error([&] { sweep::merge_reports({{"a.json", report}, {"b.json", report}}); });
+  expect_accepted_or_user_error([&] { results::combine_shards({{"a.json", report}}); });
+  expect_accepted_or_user_error([&] { results::combine_shards({{"a.json", report}, {"b.json", report}}); });
   return 0;
 }

@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 """Whether two sweep reports agree in every deterministic field, as deterministic_view in
-src/sweep/record.h defines them (the tests in C++ compare deterministic_view(a) == deterministic_view(b)).
+src/results/record.h defines them (the tests in C++ compare deterministic_view(a) == deterministic_view(b)).
 
   compare_reports.py A.json B.json      exit 0 when they agree, 1 (naming the first differences) when not
   compare_reports.py --self-check A.json
                                         exit 0 when the comparison catches a planted change of one run's
                                         result and ignores a planted change of its timings, 1 otherwise
 
-The dropped keys are read from src/sweep/record.cpp, not copied here, so the two cannot drift apart.
+The dropped keys are read from src/results/record.cpp, not copied here, so the two cannot drift apart.
 Bad input (unreadable or non-JSON files, a record.cpp without the list) exits 2 with one line.
 """
 import copy
@@ -16,7 +16,7 @@ import os
 import re
 import sys
 
-RECORD_CPP = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "sweep", "record.cpp")
+RECORD_CPP = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "src", "results", "record.cpp")
 
 
 def fail(message):

@@ -1,0 +1,38 @@
+#pragma once
+// A heuristic as a suite or a job names it: a registered name, "NAME", or a name with parameters,
+// "NAME:k=v,k=v" (e.g. "weighted:candidates=0", the exhaustive variant). The whole text is the
+// label that names the runs in reports and in the gate's groups, so a variant is compared with
+// itself only. Parsed and resolved against the registry once, when a job is made.
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "common/params.h"
+#include "split/splitter.h"
+
+namespace bsp::experiments {
+
+// The label split into name and parameters, without the registry. Throws UsageError for a
+// parameter without '=' ("weighted:candidates").
+struct HeuristicLabel {
+  std::string name;
+  ParamAssignments params;
+};
+HeuristicLabel split_heuristic_label(const std::string& label);
+
+struct HeuristicChoice {
+  std::string label;
+  std::string name;          // as registered
+  ParamAssignments params;   // as the label gives them
+  ParamSet resolved;         // every parameter, defaults included: what decides the trees
+
+  // Throws UsageError for an unknown heuristic or a bad parameter.
+  static HeuristicChoice parse(const std::string& label);
+  // NAME with `params` (as a command's --heuristic and --param give them), labelled NAME:k=v,k=v.
+  static HeuristicChoice of(const std::string& name, ParamAssignments params);
+  // " --heuristic NAME --param k=v ...": how a command is told this choice.
+  std::string arguments() const;
+  std::unique_ptr<Splitter> splitter(std::uint64_t seed) const;
+};
+
+}  // namespace bsp::experiments

@@ -1,0 +1,26 @@
+#include "experiments/job.h"
+
+#include <chrono>
+
+#include <nlohmann/json.hpp>
+
+namespace bsp::experiments {
+
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+nlohmann::json make_record(const Job& job, nlohmann::json id, nlohmann::json metrics, nlohmann::json invariants,
+                           nlohmann::json validation, nlohmann::json ray_shooting, nlohmann::json timings,
+                           double start_seconds) {
+  timings["job_seconds"] = wall_seconds() - start_seconds;
+  return {{"key", job.key()},
+          {"id", std::move(id)},
+          {"metrics", std::move(metrics)},
+          {"invariants", std::move(invariants)},
+          {"validation", std::move(validation)},
+          {"ray_shooting", std::move(ray_shooting)},
+          {"timings", std::move(timings)}};
+}
+
+}  // namespace bsp::experiments

@@ -1,0 +1,300 @@
+#include "experiments/merge/merge.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "catalog.h"
+#include "common/hash.h"
+#include "experiments/merge/set_operation.h"
+#include "solid_pairs.h"
+#include "split/registry.h"
+
+namespace bsp::experiments {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr std::uint64_t kMaxPoints = 100'000'000;  // as bspbench merge --points
+constexpr std::uint64_t kDefaultPoints = 10000;
+
+constexpr TimingField kTimings[] = {
+    {"merge_cpu_samples", TimingRole::GatedSamples,
+     "thread CPU seconds per merge (merge and reduce), one per timed batch of at least 2 ms (experiments/timing.h)"},
+    {"merge_cpu_seconds", TimingRole::SamplesMedian, "the median of merge_cpu_samples"},
+    {"merge_cpu_merges", TimingRole::SampleCount, "merges timed for the samples: depends on the machine's speed"},
+    {"merge_seconds", TimingRole::Wall, "wall time of the first merge (the result that is checked), reduction excluded"},
+    {"reduce_seconds", TimingRole::Wall, "wall time of the first merge's reduction"},
+    {"build_a_cpu_seconds", TimingRole::Cpu, "thread CPU seconds of the first operand's solid tree (build and labels)"},
+    {"build_b_cpu_seconds", TimingRole::Cpu, "thread CPU seconds of the second operand's solid tree"},
+    {"corefine_seconds", TimingRole::Wall, "wall time of CGAL's corefinement of the same operands (the reference)"},
+    {"check_seconds", TimingRole::Wall, "wall time of the proof against CGAL (points, volume, boundary)"},
+    {"job_seconds", TimingRole::Wall, "wall time of the whole job"},
+};
+
+// What aggregation groups by and fits growth of (experiments/kind.h).
+constexpr std::string_view kGroupBy[] = {"operation"};
+constexpr std::string_view kGrowthMetrics[] = {"before_nodes", "after_nodes", "partition_nodes"};
+constexpr std::string_view kGrowthTimings[] = {"merge_cpu_seconds", "merge_seconds"};
+
+// A record field and where it is in to_json(SolidCheck) (validate/solid_check.h): the one place a
+// check becomes JSON, from which the record takes what it reports.
+struct CheckField {
+  const char* name;
+  const char* pointer;
+};
+// The boundary's closure: what must be zero, with what was done to close it. Volumes, not their
+// relative errors: an error near 1e-16 is rounding noise that any change of summation order moves,
+// while the volumes themselves compare within the gate's relative tolerance.
+constexpr CheckField kInvariantFields[] = {{"border_edges", "/boundary/border_edges"},
+                                           {"repeated_directed_edges", "/boundary/repeated_directed_edges"},
+                                           {"t_junctions_split", "/boundary/t_junctions_split"},
+                                           {"dropped_faces", "/boundary/dropped_faces"},
+                                           {"boundary_volume", "/boundary/volume"}};
+// Point membership and volume against CGAL: what must be zero, with what was counted apart.
+constexpr CheckField kValidationFields[] = {{"points", "/points"},
+                                            {"compared", "/compared"},
+                                            {"mismatches", "/mismatches"},
+                                            {"on_operand_surface", "/on_operand_surface"},
+                                            {"within_plane_eps", "/within_plane_eps"},
+                                            {"within_plane_eps_disagree", "/within_plane_eps_disagree"},
+                                            {"corefine_volume", "/corefine_volume"},
+                                            {"corefine_error", "/corefine_error"}};
+constexpr CheckField kCheckMetricFields[] = {{"result_volume", "/tree_volume"}, {"boundary_faces", "/boundary/faces"}};
+
+json pick(const json& from, std::span<const CheckField> fields, json out = json::object()) {
+  for (const auto& f : fields) out[f.name] = from.at(json::json_pointer(f.pointer));
+  return out;
+}
+
+// {"a": {"b": 1}} as {"a_b": 1}, so aggregation summarises every field.
+void flatten_into(const json& from, const std::string& prefix, json& out) {
+  for (const auto& [k, v] : from.items()) {
+    if (v.is_object()) flatten_into(v, prefix + k + "_", out);
+    else out[prefix + k] = v;
+  }
+}
+
+// Operand trees and merge cost, flat; the merge's wall times go to the timings.
+json merge_metrics(const SetOperationRun& run, const json& check, json& timings) {
+  json m = json::object();
+  for (const auto& [prefix, o] : {std::pair{"a_", &run.operands.a}, std::pair{"b_", &run.operands.b}}) {
+    m[std::string(prefix) + "fragments"] = o->fragments;
+    flatten_into(to_json(solid_size(o->solid)), prefix, m);
+  }
+  flatten_into(to_json(run.stats), "", m);
+  split_timings(m, timings, "", kTimings);
+  return pick(check, kCheckMetricFields, std::move(m));
+}
+
+json boundary_invariants(const SolidCheck& c, const json& check) {
+  const bool volume_ok = c.boundary_volume_relative_error <= kVolumeRelativeTolerance;
+  json out = pick(check, kInvariantFields);
+  out["violations"] = c.boundary.edges.border_edges + (volume_ok ? 0 : 1);
+  return out;
+}
+
+json proof_validation(const SolidCheck& c, const json& check) {
+  const bool volume_ok = c.corefine_error.empty() && c.volume_relative_error <= kVolumeRelativeTolerance;
+  json out = pick(check, kValidationFields);
+  out["violations"] = c.mismatches + (volume_ok ? 0 : 1);
+  return out;
+}
+
+std::array<SolidOperand, 2> operands(const MergeSpec& s) { return find_solid_pair(s.pair).operands(s.n, s.seed); }
+
+ParamSet operand_params(const SolidOperand& o) {
+  return ParamSet::resolve(find_generator(o.scene).params, o.params, "scene " + o.scene);
+}
+
+Scene operand_scene(const SolidOperand& o) {
+  Scene scene = make_scene(o.scene, o.params);
+  check_scene(scene, "scene " + scene.name);
+  return scene;
+}
+
+std::string command(const MergeSpec& s) {
+  std::string out = "bspbench merge";
+  const auto ops = operands(s);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::string which = i == 0 ? "--a" : "--b";
+    out += " " + which + " " + ops[i].scene;
+    for (const auto& [k, v] : ops[i].params) out += " " + which + "-param " + k + "=" + v;
+  }
+  return out + " --op " + std::string(set_op_name(s.op)) + s.heuristic.arguments() + " --seed " +
+         std::to_string(s.seed) + " --points " + std::to_string(s.points);
+}
+
+// The key: the pair, both operands as resolved, the heuristic, the operation, the seed and the
+// points checked.
+std::string merge_key(const MergeSpec& s) {
+  Hasher h;
+  h.add_string("merge");
+  h.add_string(s.pair);
+  for (const auto& o : operands(s)) {
+    h.add_string(o.scene);
+    h.add_string(operand_params(o).canonical());
+  }
+  h.add_string(s.heuristic.label);
+  h.add_string(s.heuristic.resolved.canonical());
+  h.add_string(set_op_name(s.op));
+  h.add_u64(s.seed);
+  h.add_u64(s.points);
+  return h.hex();
+}
+
+// ---- the block ----
+
+std::vector<std::uint64_t> pair_sizes(const SolidPairInfo& pair, const MergeBlock& block) {
+  if (!pair.sized) return {0};
+  std::vector<std::uint64_t> out;
+  for (auto s : block.sizes)
+    if (static_cast<double>(s) >= pair.min_n && static_cast<double>(s) <= pair.max_n) out.push_back(s);
+  return out;
+}
+
+std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, const std::string& path) {
+  r.expect(j, j.is_object(), path, "an object");
+  r.check_keys(j, path, {"pairs", "heuristics", "ops", "sizes", "seeds", "points"});
+  auto b = std::make_unique<MergeBlock>();
+  std::vector<const SolidPairInfo*> chosen;
+  if (const json* pairs = r.optional(j, "pairs")) {
+    b->pairs = r.names(*pairs, child(path, "pairs"), "leave \"pairs\" out to run every solid pair",
+                       [](const std::string& name) { find_solid_pair(name); });
+    for (const auto& name : b->pairs) chosen.push_back(&find_solid_pair(name));
+  } else {
+    for (const auto& pair : solid_pairs()) chosen.push_back(&pair);
+  }
+  if (const json* h = r.optional(j, "heuristics")) b->heuristics = r.heuristics(*h, child(path, "heuristics"));
+  if (const json* ops = r.optional(j, "ops")) {
+    for (const auto& name : r.names(*ops, child(path, "ops"), "leave \"ops\" out for all four",
+                                    [](const std::string& op) { parse_set_op(op); }))
+      b->ops.push_back(parse_set_op(name));
+  }
+  const bool any_sized = std::any_of(chosen.begin(), chosen.end(), [](const SolidPairInfo* p) { return p->sized; });
+  if (const json* s = r.optional(j, "sizes")) {
+    const std::string p = child(path, "sizes");
+    if (!any_sized) r.fail(p, "no pair of this block takes a size");
+    b->sizes = r.sizes(*s, p);
+    if (r.optional(j, "pairs"))
+      for (const auto* pair : chosen)
+        for (std::size_t i = 0; pair->sized && i < b->sizes.size(); ++i) {
+          const auto n = static_cast<double>(b->sizes[i]);
+          if (n < pair->min_n || n > pair->max_n) {
+            std::ostringstream range;
+            range << "[" << pair->min_n << ", " << pair->max_n << "]";
+            r.fail(element(p, i), std::to_string(b->sizes[i]) + " is outside " + pair->name +
+                                      "'s range of polygons per operand, " + range.str());
+          }
+        }
+  } else if (any_sized) {
+    r.fail(path, "missing key 'sizes' (polygons per operand)");
+  }
+  b->seeds = r.seeds(j, path);
+  b->points = kDefaultPoints;
+  if (const json* points = r.optional(j, "points")) b->points = r.integer(*points, child(path, "points"), 0, kMaxPoints);
+  return b;
+}
+
+}  // namespace
+
+Jobs MergeBlock::expand() const {
+  std::vector<std::string> names = pairs;
+  if (names.empty())
+    for (const auto& p : solid_pairs()) names.push_back(p.name);
+  std::vector<std::string> labels = heuristics;
+  if (labels.empty())
+    for (const auto& h : bsp::heuristics()) labels.push_back(h.name);
+  const std::vector<SetOp> all_ops = ops.empty() ? std::vector<SetOp>{SetOp::Union, SetOp::Intersection,
+                                                                      SetOp::Difference, SetOp::SymmetricDifference}
+                                                 : ops;
+  Jobs out;
+  for (const auto& name : names) {
+    const SolidPairInfo& pair = find_solid_pair(name);
+    for (auto n : pair_sizes(pair, *this))
+      for (const auto& label : labels) {
+        const HeuristicChoice h = HeuristicChoice::parse(label);
+        for (auto op : all_ops)
+          for (auto seed : seeds) out.push_back(std::make_shared<MergeJob>(MergeSpec{pair.name, n, h, op, seed, points}));
+      }
+  }
+  return out;
+}
+
+MergeJob::MergeJob(MergeSpec spec) : spec_(std::move(spec)) { set_identity(merge_key(spec_), spec_.n); }
+
+nlohmann::json MergeJob::identity() const {
+  json ops = json::array();
+  for (const auto& o : operands(spec_)) ops.push_back({{"scene", o.scene}, {"params", operand_params(o).to_json()}});
+  // The pair's parameters as given: n when the pair is sized, and the seed.
+  json pair_params = json::object();
+  if (spec_.n > 0) pair_params["n"] = spec_.n;
+  pair_params["seed"] = spec_.seed;
+  return {{"kind", "merge"},
+          {"scene", spec_.pair},
+          {"scene_params", std::move(pair_params)},
+          {"operands", std::move(ops)},
+          {"heuristic", spec_.heuristic.label},
+          {"heuristic_params", spec_.heuristic.resolved.to_json()},
+          {"operation", set_op_name(spec_.op)},
+          {"build", "recursive"},
+          {"shape", shape_name(Shape::Strict)},
+          {"seed", spec_.seed},
+          {"n", spec_.n},
+          {"points", spec_.points},
+          {"command", command(spec_)}};
+}
+
+nlohmann::json MergeJob::run(const RunContext& context) const {
+  const double start = wall_seconds();
+  const auto specs = operands(spec_);
+  const Scene a = operand_scene(specs[0]), b = operand_scene(specs[1]);
+  const auto splitter = spec_.heuristic.splitter(spec_.seed);
+  SolidCheckSettings settings;
+  settings.points = spec_.points;
+  settings.seed = spec_.seed;
+  json timings = json::object();
+  double check_start = 0;
+  const SetOperationRun run = run_set_operation(a, b, spec_.op, *splitter, settings, [&](const SolidOperands& o) {
+    const TimedBatches batches = time_batches([&] { merge(o.a.solid, o.b.solid, spec_.op); },
+                                              context.slowdown(spec_.heuristic.label));
+    timings["merge_cpu_samples"] = batches.samples;
+    timings["merge_cpu_merges"] = batches.runs;
+    timings["merge_cpu_seconds"] = batches.median();
+    check_start = wall_seconds();
+  });
+  timings["check_seconds"] = wall_seconds() - check_start;
+  timings["build_a_cpu_seconds"] = run.operands.a_cpu_seconds;
+  timings["build_b_cpu_seconds"] = run.operands.b_cpu_seconds;
+  timings["corefine_seconds"] = run.check.corefine_seconds;
+  const json check = to_json(run.check);
+  json id = identity();
+  id["n_polygons"] = a.polygons.size() + b.polygons.size();
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Scene& s = i == 0 ? a : b;
+    id["operands"][i]["n_polygons"] = s.polygons.size();
+    id["operands"][i]["scene_hash"] = scene_json(s)["hash"];
+  }
+  json metrics = merge_metrics(run, check, timings);
+  return make_record(*this, std::move(id), std::move(metrics), boundary_invariants(run.check, check),
+                     proof_validation(run.check, check), nullptr, std::move(timings), start);
+}
+
+const Kind& merge_kind() {
+  static const Kind kind{
+      .name = "merge",
+      .suite_key = "merges",
+      .summary = "solid pair x size x heuristic x set operation x seed: two solid trees merged, proved against CGAL",
+      .parse = parse_block,
+      .timings = kTimings,
+      .group_by = kGroupBy,
+      .growth_metrics = kGrowthMetrics,
+      .growth_timings = kGrowthTimings,
+      .schema_section = "MERGE RUN",
+  };
+  return kind;
+}
+
+}  // namespace bsp::experiments
