@@ -45,6 +45,16 @@ struct Kind {
   // A timing also fitted against the fragments made (the cost per unit of output, which the
   // scene's density does not change); empty for none.
   std::string_view growth_against_fragments = {};
+  // How the gate names a run's timing group beside its scene and heuristic: by the identity field
+  // that stands for the shape, or by a fixed word when one is given (all runs of a scene and
+  // heuristic then pool); and which identity field tells the runs of a group apart in messages
+  // (printed "n=N" for n, bare otherwise).
+  std::string_view timing_group_field = "shape";
+  std::string_view timing_group_word = {};
+  std::string_view instance_field = "n";
+  // Whether a record's identity has the kind's own fields of the right types, beyond the ones
+  // every identity has; nullptr: it has none. A report failing this is refused when read.
+  bool (*identity_ok)(const nlohmann::json& id) = nullptr;
   // The heading of its record's section in analysis/SCHEMA.md ("RUN", "MERGE RUN", ...), which
   // must name every timing field above.
   std::string_view schema_section = {};

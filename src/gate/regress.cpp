@@ -29,22 +29,22 @@ constexpr const char* kDeterministicSections[] = {"id", "metrics", "invariants",
 constexpr std::pair<const char*, const char*> kMustBeZero[] = {
     {"invariants", "violations"}, {"validation", "violations"}, {"ray_shooting", "mismatches"}};
 
-// The timing group of a run (regress.h): a merge run's shape is its operation, an animate run's its
-// update strategy, an occlude run's "occlude", a Doom run's "doom" (its scene is the IWAD: maps pool).
+// The timing group of a run (regress.h): scene, heuristic and what its kind groups by in place of
+// the shape (experiments/kind.h: a merge run's operation, an animate run's update strategy, a fixed
+// word for occlude and Doom runs, whose sizes or maps pool).
 std::string group_label(const nlohmann::json& id) {
-  const std::string kind = id.value("kind", "draw");
-  const std::string shape = kind == "merge"     ? id.value("operation", "?")
-                            : kind == "animate" ? id.value("strategy", "?")
-                            : kind == "occlude" ? "occlude"
-                            : kind == "doom"    ? "doom"
-                                                : id.value("shape", "?");
+  const experiments::Kind* kind = results::kind_of(id);
+  const std::string shape = !kind                              ? id.value("shape", "?")
+                            : !kind->timing_group_word.empty() ? std::string(kind->timing_group_word)
+                                                               : id.value(std::string(kind->timing_group_field), "?");
   return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + shape;
 }
 
 std::string run_label(const nlohmann::json& id) {
-  const std::string size =
-      id.value("kind", "") == "doom" ? id.value("map", "?") : "n=" + id.value("n", nlohmann::json()).dump();
-  return group_label(id) + " " + size + " seed=" + id.value("seed", nlohmann::json()).dump();
+  const experiments::Kind* kind = results::kind_of(id);
+  const std::string field(kind ? kind->instance_field : "n");
+  const std::string instance = field == "n" ? "n=" + id.value("n", nlohmann::json()).dump() : id.value(field, "?");
+  return group_label(id) + " " + instance + " seed=" + id.value("seed", nlohmann::json()).dump();
 }
 
 // A section of a run, or null when the run has none.

@@ -66,18 +66,13 @@ bool has_labels(const nlohmann::json& id, bool optional) {
   return true;
 }
 
-// A drawing or occlude run, an animate run with its strategy and moving count, a merge run with
-// its operation and two operands, or a Doom run with its map and builder kind.
+// A run of a kind this build knows, with the identity fields its kind requires
+// (Kind::identity_ok: an animate run's strategy and moving count, a merge run's operation and
+// two operands, a Doom run's map and builder kind).
 bool has_kind(const nlohmann::json& id) {
   if (!has(id, "kind", &nlohmann::json::is_string)) return false;
-  if (id["kind"] == "draw" || id["kind"] == "occlude") return true;
-  if (id["kind"] == "doom")
-    return has(id, "map", &nlohmann::json::is_string) && has(id, "builder_kind", &nlohmann::json::is_string);
-  if (id["kind"] == "animate")
-    return has(id, "strategy", &nlohmann::json::is_string) && has(id, "moving", &nlohmann::json::is_number_unsigned) &&
-           has(id, "speed", &nlohmann::json::is_number);
-  return id["kind"] == "merge" && has(id, "operation", &nlohmann::json::is_string) &&
-         has(id, "operands", &nlohmann::json::is_array) && id["operands"].size() == 2;
+  const experiments::Kind* kind = kind_of(id);
+  return kind && (!kind->identity_ok || kind->identity_ok(id));
 }
 
 // What aggregation, merging and the regression gate read from a run record.

@@ -102,6 +102,12 @@ std::vector<std::uint64_t> sizes_in_range(const GeneratorInfo& g, const std::vec
   return out;
 }
 
+// What reports must hold of an animate run's identity: its strategy, moving count and speed.
+bool strategy_moving_and_speed(const json& id) {
+  return id.contains("strategy") && id["strategy"].is_string() && id.contains("moving") &&
+         id["moving"].is_number_unsigned() && id.contains("speed") && id["speed"].is_number();
+}
+
 AnimationSpec animation_spec(const SceneRun& s, const AnimateParams& a) {
   AnimationSpec spec;
   spec.scene = s.scene;
@@ -228,6 +234,8 @@ const Kind& animate_kind() {
       .group_by = kGroupBy,
       .growth_metrics = kGrowthMetrics,
       .growth_timings = kGrowthTimings,
+      .timing_group_field = "strategy",
+      .identity_ok = strategy_moving_and_speed,
       .schema_section = "ANIMATE RUN",
   };
   return kind;

@@ -293,6 +293,11 @@ nlohmann::json DoomJob::run(const RunContext& context) const {
 
 namespace {
 
+// What reports must hold of a Doom run's identity: its map and who built its nodes.
+bool map_and_builder(const json& id) {
+  return id.contains("map") && id["map"].is_string() && id.contains("builder_kind") && id["builder_kind"].is_string();
+}
+
 // Only our trees' violations are ours; an external builder's or the WAD's are facts about them.
 bool ours(const json& id) { return id.value("builder_kind", "") == "heuristic"; }
 
@@ -309,6 +314,9 @@ const Kind& doom_kind() {
       .group_by = kGroupBy,
       .growth_metrics = kGrowthMetrics,
       .growth_timings = kGrowthTimings,
+      .timing_group_word = "doom",
+      .instance_field = "map",
+      .identity_ok = map_and_builder,
       .schema_section = "DOOM RUN",
       .judged_for_violations = ours,
   };

@@ -145,6 +145,12 @@ std::string merge_key(const MergeSpec& s) {
   return h.hex();
 }
 
+// What reports must hold of a merge run's identity: its operation and two operands.
+bool operation_and_operands(const json& id) {
+  return id.contains("operation") && id["operation"].is_string() && id.contains("operands") &&
+         id["operands"].is_array() && id["operands"].size() == 2;
+}
+
 // ---- the block ----
 
 std::vector<std::uint64_t> pair_sizes(const SolidPairInfo& pair, const MergeBlock& block) {
@@ -292,6 +298,8 @@ const Kind& merge_kind() {
       .group_by = kGroupBy,
       .growth_metrics = kGrowthMetrics,
       .growth_timings = kGrowthTimings,
+      .timing_group_field = "operation",
+      .identity_ok = operation_and_operands,
       .schema_section = "MERGE RUN",
   };
   return kind;

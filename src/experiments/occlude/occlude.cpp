@@ -160,6 +160,7 @@ const Kind& occlude_kind() {
       .timings = kTimings,
       .growth_metrics = kGrowthMetrics,
       .growth_timings = kGrowthTimings,
+      .timing_group_word = "occlude",
       .schema_section = "OCCLUDE RUN",
   };
   return kind;
