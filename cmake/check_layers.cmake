@@ -1,7 +1,7 @@
 cmake_minimum_required(VERSION 3.25)
 # The layering is the link lines (cmake/layers.cmake writes them down at configure time as
 # build/layers.cmake): a file may include only files of its own library and of the libraries it
-# links, directly or through others.
+# links, directly or through others; and a library links only libraries it includes something of.
 #   cmake -DROOT=<source tree> -DLAYERS=<layer description> -P check_layers.cmake
 # prints every offence and fails when there is one.
 
@@ -38,9 +38,20 @@ foreach(file IN LISTS project_files)
     layer_owners(${inc} used)
     if(NOT used)
       problem("${file}: ${lib} includes ${inc}, which no library owns")
+    elseif(used IN_LIST reach_${lib})
+      set(uses_${lib}_${used} TRUE)
     # (a file of several owners is reported once, as such, not at each include of it)
-    elseif(NOT used STREQUAL lib AND NOT used IN_LIST reach_${lib} AND NOT used MATCHES ";")
+    elseif(NOT used STREQUAL lib AND NOT used MATCHES ";")
       problem("${file}: ${lib} includes ${inc} of ${used}, which it does not link")
+    endif()
+  endforeach()
+endforeach()
+
+# A link nothing needs hides the real layering and makes a lower layer look used.
+foreach(lib IN LISTS layer_libraries)
+  foreach(link IN LISTS layer_${lib}_links)
+    if(NOT uses_${lib}_${link})
+      problem("${lib} links ${link} but includes nothing of it")
     endif()
   endforeach()
 endforeach()
@@ -49,4 +60,4 @@ list(LENGTH layer_libraries count)
 if(problems GREATER 0)
   message(FATAL_ERROR "check_layers: ${problems} problem(s) in ${count} libraries")
 endif()
-message(STATUS "check_layers: the includes of ${count} libraries follow their link lines")
+message(STATUS "check_layers: the includes of ${count} libraries follow their link lines exactly")
