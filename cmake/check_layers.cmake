@@ -3,7 +3,43 @@ cmake_minimum_required(VERSION 3.25)
 # build/layers.cmake): a file may include only files of its own library and of the libraries it
 # links, directly or through others; and a library links only libraries it includes something of.
 #   cmake -DROOT=<source tree> -DLAYERS=<layer description> -P check_layers.cmake
-# prints every offence and fails when there is one.
+# prints every offence and fails when there is one;
+#   ... -DMODE=graph -P check_layers.cmake
+# prints the layer graph (each library and the libraries it links directly), and
+#   ... -DMODE=documented -DDOC=<file> -P check_layers.cmake
+# fails unless DOC holds that printed block verbatim (docs/architecture.md does).
+
+if(MODE STREQUAL "graph" OR MODE STREQUAL "documented")
+  include(${LAYERS})
+  # Sorted, one edge a line, so that the block changes only where the link lines do.
+  set(edges "")
+  set(libs ${layer_libraries})
+  list(SORT libs)
+  foreach(lib IN LISTS libs)
+    set(links ${layer_${lib}_links})
+    list(SORT links)
+    if(NOT links)
+      list(APPEND edges "  ${lib}")
+    endif()
+    foreach(link IN LISTS links)
+      list(APPEND edges "  ${lib} --> ${link}")
+    endforeach()
+  endforeach()
+  list(JOIN edges "\n" edges)
+  set(block "<!-- layer-graph:begin -->\n```mermaid\ngraph TD\n${edges}\n```\n<!-- layer-graph:end -->")
+  if(MODE STREQUAL "graph")
+    message(NOTICE "${block}")
+  else()
+    file(READ ${DOC} doc)
+    string(FIND "${doc}" "${block}" at)
+    if(at EQUAL -1)
+      message(NOTICE "${block}")
+      message(FATAL_ERROR "${DOC} does not hold the layer graph of the link lines printed above: "
+                          "put it in place of the block between the markers")
+    endif()
+  endif()
+  return()
+endif()
 
 include(${CMAKE_CURRENT_LIST_DIR}/project_includes.cmake)
 set(problems 0)
