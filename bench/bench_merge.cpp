@@ -31,6 +31,7 @@
 #include "catalog.h"
 #include "mesh_scenes.h"
 #include "metrics/statistics.h"
+#include "solid/cells.h"
 #include "solid/solid_build.h"
 #include "split/registry.h"
 #include "validate/exact_solid.h"

@@ -7,7 +7,8 @@
 #include <span>
 
 #include "dynamic/dynamic_tree.h"
-#include "dynamic/updater.h"
+#include "dynamic/update_strategy.h"
+#include "split/splitter.h"
 
 namespace bsp {
 

@@ -3,7 +3,9 @@
 #include <memory>
 #include <vector>
 
-#include "dynamic/updater.h"
+#include "dynamic/update_strategy.h"
+#include "split/splitter.h"
+#include "tree/build.h"
 
 namespace bsp {
 

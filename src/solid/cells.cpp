@@ -175,4 +175,10 @@ double cell_volume(const Cell& cell) {
   return v / 6.0;
 }
 
+double solid_volume(const SolidTree& solid) {
+  double volume = 0;
+  for_each_in_cell(solid, [&](const Cell& cell) { volume += cell_volume(cell); });
+  return volume;
+}
+
 }  // namespace bsp

@@ -50,4 +50,8 @@ void for_each_in_cell(const SolidTree& solid, F f) {
   }
 }
 
+// The sum of the IN cells' volumes: the box cut by the planes on each path, as polytopes, each
+// vertex going by the sign of its distance (no tolerance: no sliver changes sides).
+double solid_volume(const SolidTree& solid);
+
 }  // namespace bsp

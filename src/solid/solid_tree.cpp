@@ -6,7 +6,6 @@
 
 #include "common/errors.h"
 #include "geometry/convex_loop.h"
-#include "solid/cells.h"
 
 namespace bsp {
 
@@ -139,12 +138,6 @@ SolidSize solid_size(const SolidTree& solid) {
     stack.push_back({solid.nodes[r].front, depth + 1});
   }
   return size;
-}
-
-double solid_volume(const SolidTree& solid) {
-  double volume = 0;
-  for_each_in_cell(solid, [&](const Cell& cell) { volume += cell_volume(cell); });
-  return volume;
 }
 
 SolidTree complemented(SolidTree solid) {

@@ -76,10 +76,6 @@ struct SolidSize {
 };
 SolidSize solid_size(const SolidTree& solid);
 
-// The sum of the IN cells' volumes: the box cut by the planes on each path, as polytopes, each
-// vertex going by the sign of its distance (no tolerance: no sliver changes sides).
-double solid_volume(const SolidTree& solid);
-
 // The same tree with every leaf label flipped (the complement of the solid).
 SolidTree complemented(SolidTree solid);
 

@@ -10,8 +10,9 @@
 // The splitter argument is accepted for a uniform build interface and not consulted.
 #include <vector>
 
-#include "tree/build.h"
 #include "split/fragment_store.h"
+#include "split/splitter.h"
+#include "tree/build_options.h"
 #include "tree/draft.h"
 
 namespace bsp {

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/rng.h"
+#include "solid/cells.h"
 
 namespace bsp {
 

@@ -1,0 +1,2 @@
+#include "cyc/b.h"
+#include "cyc/c.h"

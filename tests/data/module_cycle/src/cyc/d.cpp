@@ -1,0 +1,2 @@
+#include "cyc/a.h"
+#include <vector>
