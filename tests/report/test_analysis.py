@@ -183,6 +183,22 @@ class Exports(unittest.TestCase):
         self.assertIn(r"A \& B", t.latex())
         self.assertIn("<b>y</b>", t.html())
 
+    def test_groups_spans_and_titles_keep_the_flat_formats_aligned(self):
+        t = tables.Table("g", "G", [("map", ""), tables.Column("splits", title="it's hover text"), ("depth", "")],
+                         [["E1M1", tables.Cell("error", title="cmd", span=2)], ["E1M2", 5, 3]],
+                         groups=[(None, 1), ("zdbsp", 2)])
+        page = t.html()
+        self.assertIn("<th rowspan=2>map</th><th colspan=2>zdbsp</th></tr><tr><th title='it&#x27;s hover text'>", page)
+        self.assertIn("<td colspan=2 title='cmd'>error</td>", page)
+        self.assertEqual(t.csv().splitlines(), ["map,zdbsp: splits,zdbsp: depth", "E1M1,error,", "E1M2,5,3"])
+        self.assertIn("| E1M1 | error |  |", t.markdown())
+        named = tables.Table("s", "S", [tables.Column("what", left=True), ("value", "")], [["runs", 3]], row_heads=True)
+        self.assertEqual(named.html(), "<table id='table-s'><tr><th style='text-align:left'>runs</th><td>3</td></tr>"
+                                       "</table>")
+        self.assertIn("what,value", named.csv())
+
+
+
 
 if __name__ == "__main__":
     unittest.main()
