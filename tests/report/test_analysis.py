@@ -1,4 +1,5 @@
-"""The report's statistics and research sections on data whose answer is known (analysis/*.py).
+"""The report's statistics and research sections on data whose answer is known (analysis/stats.py,
+analysis/sections/*.py).
 
 Run: /usr/bin/python3 -m unittest discover -s tests/report -p 'test_*.py' (ctest: report_analysis).
 Each test also shows its check can fail: the same code on data with the opposite answer.
@@ -11,11 +12,9 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "analysis"))
 
-import cost_model  # noqa: E402
 import stats  # noqa: E402
 import tables  # noqa: E402
-import theory  # noqa: E402
-import verdicts  # noqa: E402
+from sections import cost_model, theory, verdicts  # noqa: E402
 
 
 def draw_run(scene, heuristic, n, seed, metrics, shape="strict", timings=None):
@@ -196,7 +195,6 @@ class Exports(unittest.TestCase):
         self.assertEqual(named.html(), "<table id='table-s'><tr><th style='text-align:left'>runs</th><td>3</td></tr>"
                                        "</table>")
         self.assertIn("what,value", named.csv())
-
 
 
 

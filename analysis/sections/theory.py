@@ -26,7 +26,8 @@ import math
 import statistics
 
 import stats
-import verdicts
+from sections import verdicts
+from sections.common import Section
 from tables import Cell, Table
 
 # scene -> (heuristics it applies to (empty: all), kind, exponent or None, statement)
@@ -173,3 +174,19 @@ def top_list(contradictions, disagreements):
                      + "".join(f"<li>{html.escape(d)}</li>" for d in disagreements) + "</ul>")
     parts.append("</div>")
     return "".join(parts)
+
+
+def render(report, ctx):
+    rows, contradictions, disagreements = analyse(report)
+    if not rows:
+        return None
+    t = table(rows, ctx.command)
+    bounds = "".join(f"<li><b>{html.escape(scene)}</b>: {html.escape(b[3])}"
+                     + (f" (heuristics: {', '.join(b[0])})" if b[0] else " (every heuristic)") + "</li>"
+                     for scene, b in BOUNDS.items())
+    body = (f"<h2 id='theory'>Does the theory hold?</h2><p>The bounds checked:</p><ul>{bounds}</ul>"
+            "<p>Exponents are fitted to splits (fragments − n): the bounds are about the fragments a partition "
+            "adds, and the linear n bends a short log-log range. An O(n log n) bound is met by exponents up to its "
+            "local slope 1 + 1/ln n at the sizes fitted. An explicit bound (n + 2n ln n) is checked size by size.</p>"
+            + t.html(scroll=True))
+    return Section([("theory", "does the theory hold?")], body, [t], alert=top_list(contradictions, disagreements))
