@@ -1,10 +1,12 @@
 #include "sweep/aggregate.h"
 
 #include <array>
+#include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "metrics/statistics.h"
@@ -26,6 +28,10 @@ constexpr std::array<std::string_view, 2> kAnimateGrowthMetrics = {"fragments_la
 constexpr std::array<std::string_view, 1> kAnimateGrowthTimings = {"update_cpu_seconds"};
 constexpr std::array<std::string_view, 3> kOccludeGrowthMetrics = {"emitted", "seen_by_embree", "beam_nodes"};
 constexpr std::array<std::string_view, 1> kOccludeGrowthTimings = {"occlude_cpu_seconds"};
+// Drawing runs also get fits over the sizes' geometric means, with intervals, of what the report's
+// theory check compares with the bounds: splits (what a partition adds), fragments and build time.
+constexpr std::array<std::string_view, 2> kSizeGrowthMetrics = {"splits", "fragments"};
+constexpr std::array<std::string_view, 1> kSizeGrowthTimings = {"build_cpu_seconds"};
 // Doom runs pool an IWAD's maps (all at n = 0): the fits say how the nodes and the build time grow
 // with the map's linedef sides (n_polygons), ours and the external builders' alike.
 constexpr std::array<std::string_view, 3> kDoomGrowthMetrics = {"segs", "splits", "nodes"};
@@ -110,10 +116,52 @@ nlohmann::json growth(const Group& g, const char* section, std::string_view fiel
   }
 }
 
+// Each size's geometric means of polygon count and value over its seeds with a positive value (a
+// size without one drops out).
+std::pair<std::vector<double>, std::vector<double>> size_means(const Group& g, const char* section,
+                                                               std::string_view field) {
+  std::vector<double> x, y;
+  for (const auto& [n, runs] : g.by_n) {
+    double log_x = 0, log_y = 0, count = 0;
+    for (const auto* r : runs) {
+      const auto& v = (*r)[section];
+      const double polygons = (*r)["id"]["n_polygons"].get<double>();
+      if (!v.contains(field) || !v[std::string(field)].is_number() || !(polygons > 0)) continue;
+      const double value = v[std::string(field)].get<double>();
+      if (!(value > 0)) continue;
+      log_x += std::log(polygons);
+      log_y += std::log(value);
+      ++count;
+    }
+    if (count == 0) continue;
+    x.push_back(std::exp(log_x / count));
+    y.push_back(std::exp(log_y / count));
+  }
+  return {x, y};
+}
+
+// The fit through one point per size. Seeds are replicates of one size, not independent points of
+// the curve: pooling them would shrink the interval with every seed added. Null with fewer than
+// three sizes, where no interval exists.
+nlohmann::json growth_over_sizes(const Group& g, const char* section, std::string_view field) {
+  const auto [x, y] = size_means(g, section, field);
+  if (x.size() < 3) return nullptr;
+  try {
+    const PowerFit f = fit_power_law(x, y);
+    return {{"exponent", f.exponent},
+            {"ci95", {f.exponent - f.half_width, f.exponent + f.half_width}},
+            {"r2", f.r2},
+            {"sizes", f.points}};
+  } catch (const std::invalid_argument&) {
+    return nullptr;  // every size has the same polygon count
+  }
+}
+
 template <std::size_t K>
-nlohmann::json growth_section(const Group& g, const char* section, const std::array<std::string_view, K>& fields) {
+nlohmann::json growth_section(const Group& g, const char* section, const std::array<std::string_view, K>& fields,
+                              bool over_sizes = false) {
   nlohmann::json out = nlohmann::json::object();
-  for (auto f : fields) out[std::string(f)] = growth(g, section, f);
+  for (auto f : fields) out[std::string(f)] = over_sizes ? growth_over_sizes(g, section, f) : growth(g, section, f);
   return out;
 }
 
@@ -147,6 +195,10 @@ nlohmann::json group_json(const Group& g) {
   // Build time against the fragments made: the heuristic's cost per unit of output, which the
   // scene's density does not change.
   out["timing_growth_vs_fragments"] = {{"build_cpu_seconds", growth(g, "timings", "build_cpu_seconds", true)}};
+  // The same section names inside as outside, so deterministic_view (record.h) drops the timing fits
+  // here as it drops timing_growth at every depth.
+  out["growth_over_sizes"] = {{"growth", growth_section(g, "metrics", kSizeGrowthMetrics, true)},
+                              {"timing_growth", growth_section(g, "timings", kSizeGrowthTimings, true)}};
   return out;
 }
 
