@@ -9,7 +9,9 @@ and with --format the export of every table into DIR/tables. Each section is a m
 analysis/sections, listed in page order in sections/__init__.py: with --baseline the changes
 against it, then who wins where (verdicts), the cost model, the theory check, the glossary, a
 section per drawing scene, set operations (merge runs), dynamic scenes (animate runs), occlusion
-culling (occlude runs), 2D segments against the Paterson–Yao bound and the Doom maps.
+culling (occlude runs), 2D segments against the Paterson–Yao bound and the Doom maps. Every
+statistic a section shows is either report.json's (the aggregates' intervals and growth fits, the
+regression gate's tests in comparison.json) or one only the report computes (analysis/stats.py).
 
 Each section names the commands that reproduce it: the sweep of the report's suite, then this page.
 

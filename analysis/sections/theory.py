@@ -14,7 +14,11 @@ The bounds:
     deBerg2008], an explicit bound each size is checked against.
 The exponents are fitted to splits = fragments - n + dropped, the part of the count the bounds are
 about (fragments add the linear n, which bends a short log-log range). An O(n log n) bound is met
-by exponents up to 1 + 1/ln(n), its local slope at the geometric mean of the sizes fitted.
+by exponents up to 1 + 1/ln(n), its local slope at the geometric mean of the sizes.
+
+Every number judged here is report.json's: the exponents and their 95% t-intervals are the
+aggregates' fits over the sizes' geometric means (growth_over_sizes, analysis/SCHEMA.md), the
+intervals over seeds their by_n summaries; nothing is refitted here.
 
 A contradiction is a measurement the bound rules out: an explicit bound exceeded by the lower end
 of a size's 95% interval over seeds. An exponent whose interval excludes the theoretical one is a
@@ -25,9 +29,8 @@ import html
 import math
 import statistics
 
-import stats
 from sections import verdicts
-from sections.common import Section
+from sections.common import Section, aggregates_of
 from tables import Cell, Table
 
 # scene -> (heuristics it applies to (empty: all), kind, exponent or None, statement)
@@ -40,49 +43,43 @@ BOUNDS = {
 
 
 def autopartition_bound(n):
+    """Expected fragments of a random autopartition of n disjoint segments is at most n + 2n ln n
+    [PatersonYao1990; deBerg2008 §12.2]."""
     return n + 2 * n * math.log(n)
 
 
 def series(report):
-    """(scene, heuristic, shape) -> [(n_polygons, splits, fragments, build CPU s, seed, n)] of drawing
-    runs; a generator with several parameter sets in the report gives one scene per set."""
+    """(scene, heuristic, shape) -> the drawing aggregate; a generator with several parameter sets in
+    the report gives one scene per set."""
     name = verdicts.scene_namer(report)
-    out = {}
-    for r in report["runs"]:
-        rid = r["id"]
-        if rid.get("kind", "draw") != "draw":
-            continue
-        m, t = r["metrics"], r.get("timings") or {}
-        out.setdefault((name(rid), rid["heuristic"], rid["shape"]), []).append(
-            (rid["n_polygons"], m.get("splits"), m.get("fragments"), t.get("build_cpu_seconds"), rid["seed"], rid["n"]))
-    return dict(sorted(out.items()))
+    return dict(sorted(((name(a), a["heuristic"], a["shape"]), a) for a in aggregates_of(report, "draw")))
 
 
-def fit(points, i):
-    """The log-log fit of field i over the sizes' geometric means: seeds are replicates of one size,
-    not independent points of the curve (pooling them would shrink the interval with every seed)."""
-    by_n = {}
-    for p in points:
-        if p[i] is not None and p[i] > 0 and p[0] > 0:
-            by_n.setdefault(p[0], []).append(math.log(p[i]))
-    ns = sorted(by_n)
-    return stats.loglog_fit(ns, [math.exp(statistics.fmean(by_n[n])) for n in ns])
+def sizes(agg):
+    """The polygon counts of the aggregate's sizes (means over seeds)."""
+    return [e["n_polygons"]["mean"] for e in agg["by_n"]]
 
 
-def nlogn_slope(points):
-    ns = [p[0] for p in points if p[0] > 1]
-    return 1 + 1 / statistics.fmean(math.log(n) for n in ns)
+def fits(agg):
+    """The splits, fragments and build CPU time fits over sizes; None each where the report has none."""
+    over = agg.get("growth_over_sizes") or {}
+    metrics, timings = over.get("growth") or {}, over.get("timing_growth") or {}
+    return metrics.get("splits"), metrics.get("fragments"), timings.get("build_cpu_seconds")
 
 
-def judge(scene, points, f):
+def nlogn_slope(agg):
+    return 1 + 1 / statistics.fmean(math.log(n) for n in sizes(agg) if n > 1)
+
+
+def judge(scene, agg, f):
     """(theoretical exponent text, agrees?) for a splits fit of a bounded scene."""
     _, kind, exponent, _ = BOUNDS[scene]
     if f is None:
         return "", None
-    lo, hi = f[1]
+    lo, hi = f["ci95"]
     if kind == "theta":
         return f"{exponent:g}", lo <= exponent <= hi
-    top = nlogn_slope(points)
+    top = nlogn_slope(agg)
     return f"≤ {top:.2f}", lo <= top
 
 
@@ -94,57 +91,59 @@ def applies(scene, heuristic):
 
 
 def fit_text(f):
-    return "" if f is None else f"{f[0]:.2f} [{f[1][0]:.2f}, {f[1][1]:.2f}]"
+    return "" if f is None else f"{f['exponent']:.2f} [{f['ci95'][0]:.2f}, {f['ci95'][1]:.2f}]"
+
+
+def fit_cell(f):
+    return Cell(f["exponent"] if f else None, fit_text(f))
+
+
+def size_range(agg):
+    """The least and greatest polygon count, whole (the means of equal counts)."""
+    return round(min(sizes(agg))), round(max(sizes(agg)))
 
 
 def analyse(report):
     """The exponent rows, the explicit-bound contradictions and the exponent disagreements."""
     rows, contradictions, disagreements = [], [], []
-    for (scene, heuristic, shape), points in series(report).items():
-        if len({p[0] for p in points}) < 2:
+    for (scene, heuristic, shape), agg in series(report).items():
+        if len(set(sizes(agg))) < 2:
             continue
-        fs, ff, ft = fit(points, 1), fit(points, 2), fit(points, 3)
+        fs, ff, ft = fits(agg)
         theory, agrees = ("", None)
         if applies(scene, heuristic) and shape != "leafy":
-            theory, agrees = judge(scene, points, fs)
+            theory, agrees = judge(scene, agg, fs)
             if agrees is False:
-                disagreements.append((distance(scene, points, fs),
-                                      f"{scene}, {heuristic} ({shape}): splits grow as n^{fit_text(fs)}, "
-                                      f"theory {theory}, off by {distance(scene, points, fs):.2g} "
-                                      f"({BOUNDS[scene][3]}; n = {min(p[0] for p in points)} to "
-                                      f"{max(p[0] for p in points)})"))
+                off, (lo, hi) = distance(scene, agg, fs), size_range(agg)
+                disagreements.append((off, f"{scene}, {heuristic} ({shape}): splits grow as n^{fit_text(fs)}, "
+                                           f"theory {theory}, off by {off:.2g} ({BOUNDS[scene][3]}; n = {lo} to {hi})"))
             if scene == "random-segments":
-                contradictions += bound_contradictions(scene, heuristic, shape, points)
-        rows.append([scene, heuristic + ("" if shape == "strict" else f" ({shape})"),
-                     f"{min(p[0] for p in points)}–{max(p[0] for p in points)}", Cell(fs[0] if fs else None,
-                                                                                     fit_text(fs)),
-                     Cell(theory or "—"), Cell("" if agrees is None else ("yes" if agrees else "no"), bold=agrees is False),
-                     Cell(ff[0] if ff else None, fit_text(ff)), Cell(ft[0] if ft else None, fit_text(ft))])
+                contradictions += bound_contradictions(scene, heuristic, shape, agg)
+        label = heuristic + ("" if shape == "strict" else f" ({shape})")
+        verdict = Cell("" if agrees is None else ("yes" if agrees else "no"), bold=agrees is False)
+        rows.append([scene, label, "–".join(map(str, size_range(agg))), fit_cell(fs), Cell(theory or "—"), verdict,
+                     fit_cell(ff), fit_cell(ft)])
     return rows, contradictions, [text for _, text in sorted(disagreements, key=lambda d: -d[0])]
 
 
-def distance(scene, points, f):
+def distance(scene, agg, f):
     """How far the exponent's interval lies from the theory's exponent (0 when it holds it)."""
-    target = BOUNDS[scene][2] if BOUNDS[scene][1] == "theta" else nlogn_slope(points)
-    lo, hi = f[1]
+    target = BOUNDS[scene][2] if BOUNDS[scene][1] == "theta" else nlogn_slope(agg)
+    lo, hi = f["ci95"]
     return max(lo - target, target - hi, 0.0) if BOUNDS[scene][1] == "theta" else max(lo - target, 0.0)
 
 
-def bound_contradictions(scene, heuristic, shape, points):
+def bound_contradictions(scene, heuristic, shape, agg):
     """Sizes where the interval over seeds of mean fragments lies above n + 2n ln n."""
     out = []
-    by_n = {}
-    for p in points:
-        if p[2] is not None:
-            by_n.setdefault(p[0], []).append(p[2])
-    for n, values in sorted(by_n.items()):
-        if len(values) < 2:
-            continue
-        mean = statistics.fmean(values)
-        half = stats.student_quantile(0.975, len(values) - 1) * statistics.stdev(values) / math.sqrt(len(values))
-        if mean - half > autopartition_bound(n):
-            out.append(f"{scene}, {heuristic} ({shape}), n = {n}: mean fragments {mean:.1f} ± {half:.1f} exceed "
-                       f"the bound n + 2n ln n = {autopartition_bound(n):.1f}")
+    for e in agg["by_n"]:
+        n, fragments = round(e["n_polygons"]["mean"]), e["metrics"].get("fragments")
+        if fragments is None or fragments["ci95"] is None:
+            continue  # one seed: no interval
+        lo, hi = fragments["ci95"]
+        if lo > autopartition_bound(n):
+            out.append(f"{scene}, {heuristic} ({shape}), n = {n}: mean fragments {fragments['mean']:.1f} ± "
+                       f"{(hi - lo) / 2:.1f} exceed the bound n + 2n ln n = {autopartition_bound(n):.1f}")
     return out
 
 
@@ -157,11 +156,14 @@ def table(rows, command):
                  "on the slope. Theory applies to the splits exponent; 'agrees' says whether the interval holds it.")
 
 
-def top_list(contradictions, disagreements):
-    if not contradictions and not disagreements:
+def top_list(contradictions, disagreements, fitted=True):
+    if fitted and not contradictions and not disagreements:
         return ("<div class=ok><b>Theory:</b> no run contradicts its bound, and every bounded exponent's "
                 "interval holds the theoretical one.</div>")
     parts = ["<div class=alert>"]
+    if not fitted:
+        parts.append("<p><b>Exponents not judged:</b> this report's aggregates predate their growth fits over "
+                     "sizes (see <a href='#theory'>the theory section</a>).</p>")
     if contradictions:
         parts.append(f"<b>Contradictions of an explicit bound ({len(contradictions)}):</b><ul>"
                      + "".join(f"<li>{html.escape(c)}</li>" for c in contradictions) + "</ul>")
@@ -176,6 +178,17 @@ def top_list(contradictions, disagreements):
     return "".join(parts)
 
 
+def fitted(report):
+    """Whether the aggregates carry their fits over sizes: a report written before they did has no
+    exponents to judge."""
+    return all("growth_over_sizes" in a for a in aggregates_of(report, "draw"))
+
+
+MISSING_FITS = ("<p class=alert>This report's aggregates predate their growth fits over sizes, so it has no "
+                "exponents to judge; <code>bspbench merge-reports --out NEW.json REPORT.json</code> recomputes the "
+                "aggregates from its runs.</p>")
+
+
 def render(report, ctx):
     rows, contradictions, disagreements = analyse(report)
     if not rows:
@@ -188,5 +201,6 @@ def render(report, ctx):
             "<p>Exponents are fitted to splits (fragments − n): the bounds are about the fragments a partition "
             "adds, and the linear n bends a short log-log range. An O(n log n) bound is met by exponents up to its "
             "local slope 1 + 1/ln n at the sizes fitted. An explicit bound (n + 2n ln n) is checked size by size.</p>"
-            + t.html(scroll=True))
-    return Section([("theory", "does the theory hold?")], body, [t], alert=top_list(contradictions, disagreements))
+            + ("" if fitted(report) else MISSING_FITS) + t.html(scroll=True))
+    return Section([("theory", "does the theory hold?")], body, [t],
+                   alert=top_list(contradictions, disagreements, fitted(report)))
