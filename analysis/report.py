@@ -141,7 +141,7 @@ def write_exports(tables, out_dir, fmt):
         os.replace(path + ".tmp", path)
 
 
-def page(report, head, sections):
+def page(head, sections):
     """The page: header, the sections' alerts, the leading sections, the contents, the other sections."""
     alerts = "".join(s.alert for s in sections)
     lead = "".join(s.body for s in sections if s.lead)
@@ -168,7 +168,7 @@ def main():
     except OSError as e:
         fail(f"{args.out}: cannot create the output directory ({e})")
     extra = f" --format {args.format}" if args.format else ""
-    ctx = Context(args.input, args.out, command_text(report, args.input, args.out, extra),
+    ctx = Context(args.out, command_text(report, args.input, args.out, extra),
                   reproduce(report, args.input, args.out),
                   None if baseline is None else (args.baseline, baseline, args.comparison))
     head, head_tables = header(report)
@@ -177,7 +177,7 @@ def main():
         write_exports(head_tables + [t for s in sections for t in s.tables], args.out, args.format)
     tmp = os.path.join(args.out, "index.html.tmp")
     with open(tmp, "w", encoding="utf-8") as f:
-        f.write(page(report, head, sections))
+        f.write(page(head, sections))
     os.replace(tmp, os.path.join(args.out, "index.html"))
 
 

@@ -18,7 +18,6 @@ MARKERS = "osD^vP*Xh<>p"
 @dataclass
 class Context:
     """What a section needs besides the report: where the page goes and how to remake it."""
-    source: str     # the report's path, as given
     out_dir: str    # where index.html and the plots go
     command: str    # remakes a table: the sweep, then this page (with its --format)
     how: str        # a paragraph naming the commands that reproduce a section
