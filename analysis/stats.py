@@ -1,4 +1,7 @@
-"""The statistics behind the report's verdicts, cost-model correlations and growth exponents.
+"""The statistics only the report needs: the verdicts' paired t-test and Holm's correction, the cost
+model's rank correlations and their bootstrap intervals. Intervals over seeds, growth fits and the
+regression gate's test are computed once, in C++ (src/metrics/statistics.h), and read from
+report.json.
 
 Standard library only, so the report needs nothing beyond matplotlib. Each function states the
 test or estimator it computes; tests/report/test_analysis.py checks them against published tables
@@ -57,19 +60,6 @@ def student_p(t, df):
     if math.isinf(t):
         return 0.0
     return incomplete_beta(df / 2.0, 0.5, df / (df + t * t))
-
-
-def student_quantile(q, df):
-    """The q quantile (q > 0.5) of Student's t, by bisection on student_p."""
-    lo, hi = 0.0, 1e6
-    target = 2.0 * (1.0 - q)
-    for _ in range(200):
-        mid = (lo + hi) / 2.0
-        if student_p(mid, df) > target:
-            lo = mid
-        else:
-            hi = mid
-    return (lo + hi) / 2.0
 
 
 def paired_t(diffs):
@@ -155,23 +145,3 @@ def bootstrap_interval(clusters, statistic, reps=1000, seed=1, level=0.95):
     tail = (1.0 - level) / 2.0
     return values[int(tail * (len(values) - 1))], values[int(math.ceil((1.0 - tail) * (len(values) - 1)))]
 
-
-def loglog_fit(xs, ys, level=0.95):
-    """Least squares of log y = log c + k log x: (k, (k_lo, k_hi), r2), the t interval on the slope.
-
-    Points with x or y not positive are dropped. None with fewer than three points or one x.
-    """
-    pts = [(math.log(x), math.log(y)) for x, y in zip(xs, ys) if x > 0 and y > 0]
-    if len(pts) < 3 or len({p[0] for p in pts}) < 2:
-        return None
-    lx, ly = [p[0] for p in pts], [p[1] for p in pts]
-    mx, my = statistics.fmean(lx), statistics.fmean(ly)
-    sxx = sum((a - mx) ** 2 for a in lx)
-    k = sum((a - mx) * (b - my) for a, b in zip(lx, ly)) / sxx
-    residuals = [b - (my + k * (a - mx)) for a, b in zip(lx, ly)]
-    sse = sum(r * r for r in residuals)
-    syy = sum((b - my) ** 2 for b in ly)
-    r2 = 1.0 - sse / syy if syy > 0 else 1.0
-    df = len(pts) - 2
-    half = student_quantile(0.5 + level / 2.0, df) * math.sqrt(sse / df / sxx) if df > 0 else float("inf")
-    return k, (k - half, k + half), r2

@@ -564,6 +564,24 @@ TEST(Statistics, PowerLawFitRecoversExponentCoefficientAndR2) {
   EXPECT_THROW(fit_power_law(std::vector<double>{1, 1}, std::vector<double>{2, 3}), std::invalid_argument);
 }
 
+// log x = 0, 1, 2, 3 and log y = 0, 1.1, 1.9, 3.0: slope 4.9 / 5 = 0.98, residuals 0.03, 0.09, -0.09,
+// 0.03 (SSE 0.018, Syy 4.82), se = sqrt(0.018 / 2 / 5), t(0.975, 2) = 4.302653: half-width 0.182546.
+TEST(Statistics, PowerLawFitIntervalMatchesAHandComputedOne) {
+  std::vector<double> x, y;
+  for (double ly : {0.0, 1.1, 1.9, 3.0}) {
+    x.push_back(std::exp(static_cast<double>(x.size())));
+    y.push_back(std::exp(ly));
+  }
+  const PowerFit f = fit_power_law(x, y);
+  EXPECT_NEAR(f.exponent, 0.98, 1e-12);
+  EXPECT_NEAR(f.half_width, 0.182546, 1e-6);
+  EXPECT_NEAR(f.r2, 1 - 0.018 / 4.82, 1e-12);
+  EXPECT_TRUE(f.has_interval());
+  const PowerFit two = fit_power_law(std::vector<double>{1, 10}, std::vector<double>{2, 20});
+  EXPECT_FALSE(two.has_interval());  // no degree of freedom left
+  EXPECT_EQ(two.half_width, 0.0);
+}
+
 TEST(Statistics, MedianOfOddAndEvenCounts) {
   EXPECT_EQ(median(std::vector<double>{5, 1, 3}), 3.0);
   EXPECT_EQ(median(std::vector<double>{4, 1, 3, 2}), 2.5);

@@ -21,6 +21,7 @@
 
 #include "catalog.h"
 #include "common/errors.h"
+#include "metrics/statistics.h"
 #include "solid_pairs.h"
 #include "split/registry.h"
 #include "experiments/animate/animate.h"
@@ -827,6 +828,47 @@ TEST(Aggregates, GrowthExponentOfAnExactPowerLawIsRecovered) {
   EXPECT_NEAR(agg[0]["growth"]["fragments"]["r2"].get<double>(), 1.0, 1e-12);
   ASSERT_EQ(agg[0]["by_n"].size(), 3u);
   EXPECT_EQ(agg[0]["by_n"][0]["metrics"]["fragments"]["mean"].get<double>(), 3e4);
+}
+
+// Seeds are replicates: the fit over sizes goes through each size's geometric mean, so its interval
+// has one point per size whatever the seeds; zero values are left out, and two sizes give no fit.
+TEST(Aggregates, GrowthOverSizesFitsGeometricMeansWithAnInterval) {
+  nlohmann::json runs = nlohmann::json::array();
+  int key = 0;
+  const std::vector<double> sizes{100, 1000, 10000, 100000};
+  const std::vector<double> wobble{1.0, 1.3, 0.8, 1.1};  // off the power law, so the interval has a width
+  for (std::size_t i = 0; i < sizes.size(); ++i)
+    for (int seed = 1; seed <= 3; ++seed) {
+      // Seeds spread by a factor growing with n: geometric mean 1, an arithmetic mean would tilt the fit.
+      const double n = sizes[i], f = 2.0 + static_cast<double>(i), spread = seed == 1 ? f : seed == 2 ? 1 / f : 1.0;
+      runs.push_back({{"key", std::to_string(key++)},
+                      {"id", {{"scene", "s"}, {"heuristic", "h"}, {"shape", "strict"}, {"scene_params", {{"n", n}}},
+                              {"n", static_cast<std::uint64_t>(n)}, {"n_polygons", n}}},
+                      {"metrics", {{"fragments", 3 * n * n * wobble[i] * spread}, {"splits", i == 0 && seed == 3 ? 0.0 : n}}},
+                      {"timings", {{"build_cpu_seconds", 1e-6 * n}}},
+                      {"validation", nullptr}});
+    }
+  const nlohmann::json over = aggregate_runs(runs)[0]["growth_over_sizes"];
+  std::vector<double> y;
+  for (std::size_t i = 0; i < sizes.size(); ++i) y.push_back(3 * sizes[i] * sizes[i] * wobble[i]);
+  const PowerFit expected = fit_power_law(sizes, y);
+  const auto& fragments = over["growth"]["fragments"];
+  EXPECT_NEAR(fragments["exponent"].get<double>(), expected.exponent, 1e-12);
+  EXPECT_NEAR(fragments["ci95"][0].get<double>(), expected.exponent - expected.half_width, 1e-12);
+  EXPECT_NEAR(fragments["ci95"][1].get<double>(), expected.exponent + expected.half_width, 1e-12);
+  EXPECT_GT(expected.half_width, 0.01);
+  EXPECT_EQ(fragments["sizes"], 4);
+  EXPECT_NEAR(over["growth"]["splits"]["exponent"].get<double>(), 1.0, 1e-12);  // the zero is left out
+  EXPECT_NEAR(over["timing_growth"]["build_cpu_seconds"]["exponent"].get<double>(), 1.0, 1e-12);
+  // deterministic_view keeps the metric fits and drops the timing ones, as it drops timing_growth.
+  const nlohmann::json view = deterministic_view(aggregate_runs(runs))[0]["growth_over_sizes"];
+  EXPECT_TRUE(view.contains("growth"));
+  EXPECT_FALSE(view.contains("timing_growth"));
+  nlohmann::json two_sizes = nlohmann::json::array();
+  for (const auto& r : runs)
+    if (r["id"]["n"] != 100000) two_sizes.push_back(r);
+  two_sizes.erase(two_sizes.begin(), two_sizes.begin() + 3);
+  EXPECT_TRUE(aggregate_runs(two_sizes)[0]["growth_over_sizes"]["growth"]["fragments"].is_null());
 }
 
 class RegressGate : public ::testing::Test {

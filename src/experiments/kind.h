@@ -42,6 +42,11 @@ struct Kind {
   // The metrics and timings whose growth with the polygon count aggregation fits.
   std::span<const std::string_view> growth_metrics = {};
   std::span<const std::string_view> growth_timings = {};
+  // The metrics and timings also fitted through one point per size (the sizes' geometric means over
+  // seeds), with a 95% interval of the exponent: what the report's theory check compares with the
+  // bounds.
+  std::span<const std::string_view> size_growth_metrics = {};
+  std::span<const std::string_view> size_growth_timings = {};
   // A timing also fitted against the fragments made (the cost per unit of output, which the
   // scene's density does not change); empty for none.
   std::string_view growth_against_fragments = {};

@@ -82,9 +82,19 @@ PowerFit fit_power_law(std::span<const double> x, std::span<const double> y) {
   PowerFit f;
   f.exponent = sxy / sxx;
   f.coefficient = std::exp(my - f.exponent * mx);
-  // Residual sum of squares of the line is syy - sxy^2/sxx; a constant y is fitted exactly.
-  const double ss_res = std::max(0.0, syy - sxy * sxy / sxx);
+  // The residuals summed one by one, not as syy - sxy^2/sxx: on points close to a power law that
+  // difference cancels to rounding noise, and the interval would be the noise's square root.
+  double ss_res = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double r = std::log(y[i]) - my - f.exponent * (std::log(x[i]) - mx);
+    ss_res += r * r;
+  }
   f.r2 = syy > 0 ? 1.0 - ss_res / syy : 1.0;
+  f.points = x.size();
+  if (f.has_interval()) {
+    const std::size_t dof = f.points - 2;
+    f.half_width = student_t_975(dof) * std::sqrt(ss_res / static_cast<double>(dof) / sxx);
+  }
   return f;
 }
 

@@ -2,7 +2,8 @@
 // Summary statistics over repeated runs (seeds), shared by `bspbench compare` and the sweeps:
 // sample mean with a two-sided 95% confidence interval from Student's t distribution, and the
 // least-squares fit of a power law y = c * x^k on log-log axes with its coefficient of
-// determination R^2.
+// determination R^2 and the t-interval of k. The HTML report reads these from report.json rather
+// than computing its own (analysis/SCHEMA.md, AGGREGATE).
 #include <cstddef>
 #include <span>
 
@@ -33,10 +34,16 @@ nlohmann::json to_json(const Summary& s);
 // y = coefficient * x^exponent fitted by least squares on (log x, log y). Needs at least two
 // samples with distinct x, all x and y positive (others throw std::invalid_argument). r2 is the
 // coefficient of determination of the fit in log space: 1 for points exactly on a power law.
+// half_width is that of the exponent's two-sided 95% interval, t(m-2) * sqrt(SSE / (m-2) / Sxx) for
+// m points (Student's t on a least-squares slope [Student1908]); it needs a degree of freedom left,
+// so m >= 3. The interval assumes independent points: give it one point per size, not replicates.
 struct PowerFit {
   double exponent = 0;
   double coefficient = 0;
   double r2 = 0;
+  std::size_t points = 0;
+  double half_width = 0;  // 0 without an interval (two points)
+  bool has_interval() const { return points >= 3; }
 };
 
 PowerFit fit_power_law(std::span<const double> x, std::span<const double> y);

@@ -1,10 +1,12 @@
 #include "results/aggregate.h"
 
+#include <cmath>
 #include <span>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "common/errors.h"
@@ -90,9 +92,51 @@ nlohmann::json growth(const Group& g, const char* section, std::string_view fiel
   }
 }
 
-nlohmann::json growth_section(const Group& g, const char* section, std::span<const std::string_view> fields) {
+// Each size's geometric means of polygon count and value over its seeds with a positive value (a
+// size without one drops out).
+std::pair<std::vector<double>, std::vector<double>> size_means(const Group& g, const char* section,
+                                                               std::string_view field) {
+  std::vector<double> x, y;
+  for (const auto& [n, runs] : g.by_n) {
+    double log_x = 0, log_y = 0, count = 0;
+    for (const auto* r : runs) {
+      const auto& v = (*r)[section];
+      const double polygons = (*r)["id"]["n_polygons"].get<double>();
+      if (!v.contains(field) || !v[std::string(field)].is_number() || !(polygons > 0)) continue;
+      const double value = v[std::string(field)].get<double>();
+      if (!(value > 0)) continue;
+      log_x += std::log(polygons);
+      log_y += std::log(value);
+      ++count;
+    }
+    if (count == 0) continue;
+    x.push_back(std::exp(log_x / count));
+    y.push_back(std::exp(log_y / count));
+  }
+  return {x, y};
+}
+
+// The fit through one point per size. Seeds are replicates of one size, not independent points of
+// the curve: pooling them would shrink the interval with every seed added. Null with fewer than
+// three sizes, where no interval exists.
+nlohmann::json growth_over_sizes(const Group& g, const char* section, std::string_view field) {
+  const auto [x, y] = size_means(g, section, field);
+  if (x.size() < 3) return nullptr;
+  try {
+    const PowerFit f = fit_power_law(x, y);
+    return {{"exponent", f.exponent},
+            {"ci95", {f.exponent - f.half_width, f.exponent + f.half_width}},
+            {"r2", f.r2},
+            {"sizes", f.points}};
+  } catch (const std::invalid_argument&) {
+    return nullptr;  // every size has the same polygon count
+  }
+}
+
+nlohmann::json growth_section(const Group& g, const char* section, std::span<const std::string_view> fields,
+                              bool over_sizes = false) {
   nlohmann::json out = nlohmann::json::object();
-  for (auto f : fields) out[std::string(f)] = growth(g, section, f);
+  for (auto f : fields) out[std::string(f)] = over_sizes ? growth_over_sizes(g, section, f) : growth(g, section, f);
   return out;
 }
 
@@ -105,6 +149,11 @@ nlohmann::json group_json(const Group& g) {
   out["timing_growth"] = growth_section(g, "timings", g.kind->growth_timings);
   if (const auto f = g.kind->growth_against_fragments; !f.empty())
     out["timing_growth_vs_fragments"] = {{std::string(f), growth(g, "timings", f, true)}};
+  // The same section names inside as outside, so deterministic_view (record.h) drops the timing fits
+  // here as it drops timing_growth at every depth.
+  if (!g.kind->size_growth_metrics.empty() || !g.kind->size_growth_timings.empty())
+    out["growth_over_sizes"] = {{"growth", growth_section(g, "metrics", g.kind->size_growth_metrics, true)},
+                                {"timing_growth", growth_section(g, "timings", g.kind->size_growth_timings, true)}};
   return out;
 }
 

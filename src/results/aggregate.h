@@ -5,7 +5,9 @@
 // y = c * n^k fitted by least squares on log-log axes (metrics/statistics.h) to every run's
 // (polygon count, value) point, with its R^2. With the same number of seeds at every size the
 // exponent equals the fit through the per-size means. Growth needs two distinct sizes and
-// positive values; otherwise it is null. Doom runs group by IWAD and builder label with every map
+// positive values; otherwise it is null. Drawing runs also get growth_over_sizes: the fit through
+// one point per size (the geometric means over seeds) with the exponent's 95% t-interval, which the
+// report's theory check judges; it needs three sizes. Doom runs group by IWAD and builder label with every map
 // at n = 0, so their one size summarizes the maps, and growth is fitted across maps of different sizes.
 #include <nlohmann/json_fwd.hpp>
 

@@ -1,9 +1,9 @@
-"""The report's statistics and research sections on data whose answer is known (analysis/*.py).
+"""The report's statistics and research sections on data whose answer is known (analysis/stats.py,
+analysis/sections/*.py).
 
 Run: /usr/bin/python3 -m unittest discover -s tests/report -p 'test_*.py' (ctest: report_analysis).
 Each test also shows its check can fail: the same code on data with the opposite answer.
 """
-import math
 import os
 import random
 import sys
@@ -11,11 +11,9 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "analysis"))
 
-import cost_model  # noqa: E402
 import stats  # noqa: E402
 import tables  # noqa: E402
-import theory  # noqa: E402
-import verdicts  # noqa: E402
+from sections import cost_model, theory, verdicts  # noqa: E402
 
 
 def draw_run(scene, heuristic, n, seed, metrics, shape="strict", timings=None):
@@ -25,10 +23,7 @@ def draw_run(scene, heuristic, n, seed, metrics, shape="strict", timings=None):
 
 
 class Statistics(unittest.TestCase):
-    def test_student_t_matches_tables(self):
-        self.assertAlmostEqual(stats.student_quantile(0.975, 1), 12.7062, places=3)
-        self.assertAlmostEqual(stats.student_quantile(0.975, 4), 2.7764, places=3)
-        self.assertAlmostEqual(stats.student_quantile(0.975, 30), 2.0423, places=3)
+    def test_student_p_matches_tables(self):
         self.assertAlmostEqual(stats.student_p(2.7764451, 4), 0.05, places=5)
         self.assertAlmostEqual(stats.student_p(1.0, 1), 0.5, places=9)
 
@@ -66,17 +61,6 @@ class Statistics(unittest.TestCase):
         # Clusters of two identical pairs: the same percentiles, a resample still draws three clusters.
         doubled = [[(x, 0), (x, 0)] for x in (1, 2, 3)]
         self.assertAlmostEqual(stats.bootstrap_interval(doubled, mean_x, reps=20000, level=0.5)[0], 5 / 3)
-
-    def test_loglog_fit_matches_a_hand_computed_slope_and_interval(self):
-        # log x = 0, 1, 2, 3 and log y = 0, 1.1, 1.9, 3.0: slope 4.9 / 5 = 0.98, residuals 0.03, 0.09,
-        # -0.09, 0.03 (SSE 0.018, SYY 4.82), se = sqrt(0.018 / 2 / 5), t(0.975, 2) = 4.302653: half-width
-        # 0.182546.
-        k, (lo, hi), r2 = stats.loglog_fit([math.exp(i) for i in range(4)], [math.exp(v) for v in (0, 1.1, 1.9, 3.0)])
-        self.assertAlmostEqual(k, 0.98, places=9)
-        self.assertAlmostEqual(lo, 0.98 - 0.182546, places=5)
-        self.assertAlmostEqual(hi, 0.98 + 0.182546, places=5)
-        self.assertAlmostEqual(r2, 1 - 0.018 / 4.82, places=9)
-        self.assertIsNone(stats.loglog_fit([10, 10, 10], [1, 2, 3]))
 
 
 class Verdicts(unittest.TestCase):
@@ -145,31 +129,46 @@ class CostModel(unittest.TestCase):
         self.assertNotIn("The model fails", cost_model.failing_text(good, {}))
 
 
+def draw_aggregate(scene, heuristic, sizes, fragments=None, splits_fit=None):
+    """A drawing aggregate as report.json has it: sizes with their fragments' STAT, and the splits
+    fit over sizes (C++ computes it: tests/test_sweep.cpp)."""
+    by_n = [{"n": n, "n_polygons": {"mean": float(n)},
+             "metrics": {} if fragments is None else {"fragments": fragments(n)}} for n in sizes]
+    return {"kind": "draw", "scene": scene, "heuristic": heuristic, "shape": "strict", "scene_params": {},
+            "by_n": by_n, "growth_over_sizes": {"growth": {"splits": splits_fit}, "timing_growth": {}}}
+
+
 class Theory(unittest.TestCase):
     def report(self, exponent):
-        runs = []
-        for n in (30, 60, 120, 180):
-            for seed in range(1, 4):
-                splits = 0.25 * n ** exponent * (1 + 0.01 * seed)
-                runs.append(draw_run("saddle-grid", "crystal", n, seed,
-                                     {"splits": splits, "fragments": n + splits}, timings={"build_cpu_seconds": 1e-6 * n}))
-        return {"runs": runs}
+        fit = {"exponent": exponent, "ci95": [exponent - 0.05, exponent + 0.05], "r2": 0.99, "sizes": 4}
+        return {"runs": [], "aggregates": [draw_aggregate("saddle-grid", "crystal", (30, 60, 120, 180),
+                                                          splits_fit=fit)]}
 
     def test_quadratic_splits_agree_and_a_slower_growth_is_listed(self):
         rows, contradictions, disagreements = theory.analyse(self.report(2.0))
         self.assertEqual(disagreements, [])
         self.assertEqual(tables.text_of(rows[0][5]), "yes")
+        self.assertEqual(tables.text_of(rows[0][3]), "2.00 [1.95, 2.05]")
         _, _, disagreements = theory.analyse(self.report(1.5))
         self.assertEqual(len(disagreements), 1)
         self.assertIn("saddle-grid, crystal", disagreements[0])
+        self.assertIn("n = 30 to 180", disagreements[0])
 
     def test_the_2d_bound_is_contradicted_only_when_exceeded(self):
         def segments(factor):
-            return {"runs": [draw_run("random-segments", "random", n, s,
-                                      {"fragments": factor * theory.autopartition_bound(n) * (1 + 0.001 * s),
-                                       "splits": 1.0 * n}) for n in (100, 1000) for s in range(1, 4)]}
+            def fragments(n):
+                mean = factor * theory.autopartition_bound(n)
+                return {"mean": mean, "ci95": [0.99 * mean, 1.01 * mean]}
+            return {"runs": [], "aggregates": [draw_aggregate("random-segments", "random", (100, 1000), fragments)]}
         self.assertEqual(theory.analyse(segments(0.5))[1], [])
         self.assertEqual(len(theory.analyse(segments(1.5))[1]), 2)
+
+    def test_a_report_without_fits_over_sizes_says_its_exponents_are_not_judged(self):
+        report = self.report(2.0)
+        self.assertTrue(theory.fitted(report))
+        del report["aggregates"][0]["growth_over_sizes"]
+        self.assertFalse(theory.fitted(report))
+        self.assertIn("not judged", theory.top_list([], [], theory.fitted(report)))
 
 
 class Exports(unittest.TestCase):
@@ -182,6 +181,20 @@ class Exports(unittest.TestCase):
         self.assertIn(r"\textbf{y}", t.latex())
         self.assertIn(r"A \& B", t.latex())
         self.assertIn("<b>y</b>", t.html())
+
+    def test_groups_spans_and_titles_keep_the_flat_formats_aligned(self):
+        t = tables.Table("g", "G", [("map", ""), tables.Column("splits", title="it's hover text"), ("depth", "")],
+                         [["E1M1", tables.Cell("error", title="cmd", span=2)], ["E1M2", 5, 3]],
+                         groups=[(None, 1), ("zdbsp", 2)])
+        page = t.html()
+        self.assertIn("<th rowspan=2>map</th><th colspan=2>zdbsp</th></tr><tr><th title='it&#x27;s hover text'>", page)
+        self.assertIn("<td colspan=2 title='cmd'>error</td>", page)
+        self.assertEqual(t.csv().splitlines(), ["map,zdbsp: splits,zdbsp: depth", "E1M1,error,", "E1M2,5,3"])
+        self.assertIn("| E1M1 | error |  |", t.markdown())
+        named = tables.Table("s", "S", [tables.Column("what", left=True), ("value", "")], [["runs", 3]], row_heads=True)
+        self.assertEqual(named.html(), "<table id='table-s'><tr><th style='text-align:left'>runs</th><td>3</td></tr>"
+                                       "</table>")
+        self.assertIn("what,value", named.csv())
 
 
 if __name__ == "__main__":

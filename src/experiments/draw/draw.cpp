@@ -40,6 +40,9 @@ constexpr TimingField kTimings[] = {
 // What aggregation fits growth of (experiments/kind.h).
 constexpr std::string_view kGrowthMetrics[] = {"fragments", "nodes"};
 constexpr std::string_view kGrowthTimings[] = {"build_cpu_seconds", "build_seconds"};
+// Splits (what a partition adds), fragments and build time, over the sizes, for the theory check.
+constexpr std::string_view kSizeGrowthMetrics[] = {"splits", "fragments"};
+constexpr std::string_view kSizeGrowthTimings[] = {"build_cpu_seconds"};
 
 // ---- the block ----
 
@@ -389,6 +392,8 @@ const Kind& draw_kind() {
       .timings = kTimings,
       .growth_metrics = kGrowthMetrics,
       .growth_timings = kGrowthTimings,
+      .size_growth_metrics = kSizeGrowthMetrics,
+      .size_growth_timings = kSizeGrowthTimings,
       .growth_against_fragments = "build_cpu_seconds",
       .schema_section = "RUN",
   };

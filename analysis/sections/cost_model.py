@@ -10,13 +10,14 @@ PREDICTS, fails when its upper end is below PREDICTS, and is undecided otherwise
 Notation: ρ Spearman's rank correlation; CI its 95% bootstrap interval.
 """
 import html
-import math
+import os
 import statistics
 
 import matplotlib.pyplot as plt
 
 import stats
-import verdicts
+from sections import verdicts
+from sections.common import DPI, Section, slug
 from tables import Cell, Table
 
 PREDICTS = 0.8
@@ -175,5 +176,32 @@ def plot_scene(scene, rows_runs, path):
         fig.legend(handles, labels, loc="lower center", ncol=len(handles), fontsize=8)
     fig.suptitle(f"{scene}: Naylor's expected costs against measured costs, every heuristic and seed", fontsize=10)
     fig.tight_layout(rect=(0, 0.07, 1, 1))
-    fig.savefig(path, dpi=100)
+    fig.savefig(path, dpi=DPI)
     plt.close(fig)
+
+
+def render(report, ctx):
+    rows = correlations(report)
+    if not rows:
+        return None
+    t = table(rows, ctx.command)
+    medians = []
+    for model, measured, what in PAIRINGS:
+        rhos = [r[5] for r in rows if r[2] == model and r[3] == measured]
+        if rhos:
+            medians.append(f"{model} against {what}: median ρ {statistics.median(rhos):.2f} over {len(rhos)} "
+                           "scene–size groups")
+    plots = ""
+    by_scene = {}
+    for (scene, n), runs in groups(report).items():
+        by_scene.setdefault(scene, {})[n] = runs
+    for scene, sizes in by_scene.items():
+        if not any(r[0] == scene for r in rows):
+            continue
+        png = f"costmodel-{slug(scene)}.png"
+        plot_scene(scene, sizes, os.path.join(ctx.out_dir, png))
+        plots += f"<img src='{png}' alt='expected against measured costs for {html.escape(scene)}'>"
+    body = (f"<h2 id='costmodel'>Does the cost model predict?</h2><p>{'; '.join(medians)}.</p>"
+            + failing_text(rows, scene_traits(report)) + t.html(scroll=True)
+            + f"<h3>Scatter plots</h3><p class=cmd>Remake: <code>{html.escape(ctx.command)}</code></p>{plots}")
+    return Section([("costmodel", "does the cost model predict?")], body, [t])

@@ -14,9 +14,11 @@ lower-is-better, on the means over seeds.
 
 Notation: label = heuristic (with its shape when not strict); group = one scene at one size.
 """
+import html
 import statistics
 
 import stats
+from sections.common import METRIC_DOCS, Section, slug
 from tables import Cell, Table
 
 ALPHA = 0.05
@@ -182,3 +184,24 @@ def pareto_sentences(scene, report_groups):
         return ""
     return ("Not beaten on all of fragments, depth and E_line at once (the Pareto set, means over seeds) — "
             + "; ".join(parts) + ".")
+
+
+def render(report, ctx):
+    found = all_verdicts(report)
+    if not found:
+        return None
+    family = sum(len(items) for items in found.values())
+    units = {k: d["unit"] for k, d in METRIC_DOCS["metrics"].items()}
+    units["merge_cpu_seconds"] = "s"
+    report_groups = groups(report)
+    significant = sum(v["significant"] for items in found.values() for _, _, v in items)
+    parts = [f"<h2 id='verdicts'>Who wins where</h2><p>{family} comparisons (best against runner-up, per scene, "
+             f"size and metric), {significant} significant after Holm's correction. Merge runs appear as their solid "
+             "pair and operation.</p>"]
+    tables = []
+    for scene in sorted({s for s, _ in found}):
+        t = scene_table(scene, found, units, ctx.command, family)
+        tables.append(t)
+        parts.append(f"<h3 id='verdicts-{slug(scene)}'>{html.escape(scene)}</h3>"
+                     f"<p>{html.escape(pareto_sentences(scene, report_groups))}</p>{t.html(scroll=True)}")
+    return Section([("verdicts", "who wins where (verdicts)")], "".join(parts), tables)

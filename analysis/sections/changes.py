@@ -14,8 +14,9 @@ import json
 import statistics
 
 import stats
-
+from sections.common import Section
 from tables import Cell, Table
+
 
 def same(a, b):
     if isinstance(a, bool) or isinstance(b, bool) or not isinstance(a, (int, float)) or not isinstance(b, (int, float)):
@@ -83,7 +84,12 @@ def timing_rows(comparison):
     return rows
 
 
-def section(baseline_path, baseline, current, comparison_path, command):
+def render(current, ctx):
+    """Placed before the contents: with --baseline, what changed is the page's first question."""
+    if ctx.baseline is None:
+        return None
+    baseline_path, baseline, comparison_path = ctx.baseline
+    command = ctx.command + f" --baseline {baseline_path}"
     with open(comparison_path, encoding="utf-8") as f:
         comparison = json.load(f)
     det = Table("changes-deterministic", "Deterministic metrics that changed, per run group",
@@ -108,4 +114,4 @@ def section(baseline_path, baseline, current, comparison_path, command):
             + "<h3>Deterministic metrics</h3>"
             + (det.html(scroll=True) if det.rows else "<p>No deterministic metric changed.</p>")
             + "<h3>Timings</h3>" + tim.html(scroll=True))
-    return body, [det, tim]
+    return Section([("changes", "changes against the baseline")], body, [det, tim], lead=True)
