@@ -1128,6 +1128,7 @@ TEST(BenchGate, ReportsAreNotBenchmarkOutputs) {
 // The complete example of analysis/SUITE_SCHEMA.md (its one ```json block), read as if it lay in
 // examples/suites/: every key reaches the jobs it should.
 TEST(SweepSuiteFile, SchemaExampleExpandsToWhatItsKeysAsk) {
+  if (!freedoom_installed()) GTEST_SKIP() << kNoFreedoom;  // its Doom block reads freedoom2.wad
   std::ifstream in(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/SUITE_SCHEMA.md");
   const std::string doc{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   const auto begin = doc.find("```json\n");
@@ -1171,7 +1172,9 @@ TEST(SweepSuiteFile, SchemaExampleExpandsToWhatItsKeysAsk) {
   EXPECT_EQ(city, 2u * 3 * 2 * 3);         // sizes x heuristics x shapes x seeds
   EXPECT_EQ(incremental, (1u + 1) * 2 * 2);  // (random-disjoint at 1000 + the mesh) x shapes x seeds
   EXPECT_EQ(kinds["merge"], 2u);           // one pair, heuristic, size and seed; two operations
+  EXPECT_EQ(kinds["animate"], 2u);         // one scene, size, heuristic, count, speed and seed; two strategies
   EXPECT_EQ(kinds["occlude"], 1u);
+  EXPECT_EQ(kinds["doom"], 2u + 1 + 1);    // one map: crystal and doom-splits, ZDBSP, the shipped nodes
 }
 
 // The report's tables take each drawing run's timings, like its metrics, from

@@ -489,6 +489,31 @@ TEST_F(SweepCli, BadSuiteFilesAreOneLineErrorsWithTheirJsonPath) {
   EXPECT_EQ(err_, "bspbench sweep: nowhere/s.json: no such suite file\n");
 }
 
+// A suite file takes every kind of block, as the built-in suites (which are such files) do: an
+// animation and a Doom map run from one file, proved, with the commands that repeat them; a map the
+// IWAD lacks stops the sweep before any job runs.
+TEST_F(SweepCli, SuiteFileRunsAnimationAndDoomBlocks) {
+  if (!fs::exists("/usr/share/games/doom/freedoom2.wad") && !std::getenv("BSPBENCH_DOOM_DIR"))
+    GTEST_SKIP() << "needs the Freedoom IWADs (apt-get install freedoom)";
+  std::ofstream(dir_ / "s.json") << R"({"name": "kinds",
+    "animations": [{"scenes": ["city"], "sizes": [100], "heuristics": ["crystal"], "strategies": ["rebuild"],
+                    "moving": [1], "speeds": [0.01], "frames": 3, "object_n": 24, "check_every": 1, "views": 1}],
+    "doom": [{"iwads": ["freedoom2.wad"], "maps": ["MAP01"], "heuristics": ["crystal"], "views": 1}]})";
+  ASSERT_EQ(bspbench("sweep --suite s.json --out r.json"), 0) << err_;
+  const auto report = read_report((dir_ / "r.json").string());
+  std::map<std::string, int> kinds;
+  for (const auto& r : report["runs"]) {
+    ++kinds[r["id"]["kind"].get<std::string>()];
+    EXPECT_EQ(r["invariants"]["violations"], 0) << r["id"]["command"];
+  }
+  EXPECT_EQ(kinds, (std::map<std::string, int>{{"animate", 1}, {"doom", 2}}));  // ours and the shipped nodes
+  EXPECT_EQ(report["suite"]["source"]["path"], "s.json");
+  std::ofstream(dir_ / "s.json") << R"({"name": "kinds", "doom": [{"iwads": ["freedoom2.wad"], "maps": ["MAP99"]}]})";
+  EXPECT_EQ(bspbench("sweep --suite s.json --out bad/r.json"), 2);
+  EXPECT_NE(err_.find("freedoom2.wad: no map MAP99"), std::string::npos) << err_;
+  EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
 // A mesh of the cache, mesh:NAME, runs once per heuristic and seed under that name.
 TEST_F(SweepCli, SuiteFileRunsACachedMeshByName) {
   const auto meshes = bsp::available_meshes();

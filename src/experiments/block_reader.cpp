@@ -29,6 +29,15 @@ const ParamSpec* n_spec(const GeneratorInfo& g) {
   return nullptr;
 }
 
+std::vector<std::uint64_t> sizes_in_range(const GeneratorInfo& g, const std::vector<std::uint64_t>& sizes) {
+  const ParamSpec* n = n_spec(g);
+  if (!n) return {0};
+  std::vector<std::uint64_t> out;
+  for (auto s : sizes)
+    if (static_cast<double>(s) >= n->min && static_cast<double>(s) <= n->max) out.push_back(s);
+  return out;
+}
+
 void BlockReader::fail(const std::string& path, const std::string& what) const {
   throw InputError(file_ + ": " + (path.empty() ? "" : path + ": ") + what);
 }

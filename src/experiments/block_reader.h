@@ -106,5 +106,7 @@ class BlockReader {
 
 // g's `n` parameter; nullptr when it takes no size.
 const ParamSpec* n_spec(const GeneratorInfo& g);
+// The sizes of `sizes` within g's range of n, or one run at its defaults ({0}) when g takes no size.
+std::vector<std::uint64_t> sizes_in_range(const GeneratorInfo& g, const std::vector<std::uint64_t>& sizes);
 
 }  // namespace bsp::experiments

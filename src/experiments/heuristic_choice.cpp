@@ -35,6 +35,14 @@ HeuristicChoice HeuristicChoice::of(const std::string& name, ParamAssignments pa
   return {std::move(label), h.name, std::move(params), std::move(resolved)};
 }
 
+std::vector<HeuristicChoice> choices_or_all(const std::vector<std::string>& labels) {
+  std::vector<HeuristicChoice> out;
+  if (labels.empty())
+    for (const auto& h : heuristics()) out.push_back(HeuristicChoice::parse(h.name));
+  for (const auto& label : labels) out.push_back(HeuristicChoice::parse(label));
+  return out;
+}
+
 std::string HeuristicChoice::arguments() const {
   std::string out = " --heuristic " + name;
   for (const auto& [k, value] : params) out += " --param " + k + "=" + value;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "common/params.h"
 #include "split/splitter.h"
@@ -34,5 +35,9 @@ struct HeuristicChoice {
   std::string arguments() const;
   std::unique_ptr<Splitter> splitter(std::uint64_t seed) const;
 };
+
+// The choices `labels` name, or every registered heuristic when there are none (so a heuristic
+// added to the registry is swept without further wiring). Throws as parse does.
+std::vector<HeuristicChoice> choices_or_all(const std::vector<std::string>& labels);
 
 }  // namespace bsp::experiments

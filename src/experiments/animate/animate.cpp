@@ -9,7 +9,6 @@
 #include "common/hash.h"
 #include "dynamic/updater.h"
 #include "experiments/animate/animation_run.h"
-#include "split/registry.h"
 
 namespace bsp::experiments {
 
@@ -92,16 +91,6 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
   return b;
 }
 
-// Sizes of `sizes` within g's range of n, or one run at the defaults when g has no n.
-std::vector<std::uint64_t> sizes_in_range(const GeneratorInfo& g, const std::vector<std::uint64_t>& sizes) {
-  const ParamSpec* n = n_spec(g);
-  if (!n) return {0};
-  std::vector<std::uint64_t> out;
-  for (auto s : sizes)
-    if (static_cast<double>(s) >= n->min && static_cast<double>(s) <= n->max) out.push_back(s);
-  return out;
-}
-
 // What reports must hold of an animate run's identity: its strategy, moving count and speed.
 bool strategy_moving_and_speed(const json& id) {
   return id.contains("strategy") && id["strategy"].is_string() && id.contains("moving") &&
@@ -127,15 +116,11 @@ AnimationSpec animation_spec(const SceneRun& s, const AnimateParams& a) {
 
 Jobs AnimateBlock::expand() const {
   const std::vector<std::string> all_strategies = strategies.empty() ? updater_names() : strategies;
-  std::vector<std::string> labels = heuristics;
-  if (labels.empty())
-    for (const auto& h : bsp::heuristics()) labels.push_back(h.name);
   Jobs out;
   for (const auto& name : scenes) {
     const GeneratorInfo& g = find_generator(name);
     for (auto n : sizes_in_range(g, sizes))
-      for (const auto& label : labels) {
-        const HeuristicChoice h = HeuristicChoice::parse(label);
+      for (const auto& h : choices_or_all(heuristics)) {
         for (const auto& strategy : all_strategies)
           for (auto count : moving)
             for (auto speed : speeds)

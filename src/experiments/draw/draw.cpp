@@ -12,7 +12,6 @@
 #include "io/mesh_reader.h"
 #include "mesh_scenes.h"
 #include "metrics/tree_metrics.h"
-#include "split/registry.h"
 #include "tree/build.h"
 #include "validate/order_check.h"
 #include "validate/ray_shoot_check.h"
@@ -48,18 +47,11 @@ constexpr std::string_view kSizeGrowthTimings[] = {"build_cpu_seconds"};
 
 bool is_mesh(const SceneSpec& spec) { return is_file_scene(spec.name) || is_mesh_scene(spec.name); }
 
-// The sizes a block asks of generator g: its sizes within g's `n` range, or one run at the
-// defaults (size 0) when g has no `n`.
+// The sizes a block asks of generator g: its own (scene_sizes) or the block's.
 std::vector<std::uint64_t> sizes_for(const GeneratorInfo& g, const DrawBlock& block) {
-  const ParamSpec* n = n_spec(g);
-  if (!n) return {0};
-  const std::vector<std::uint64_t>* sizes = &block.sizes;
   for (const auto& o : block.scene_sizes)
-    if (o.scene == g.name) sizes = &o.sizes;
-  std::vector<std::uint64_t> out;
-  for (auto s : *sizes)
-    if (static_cast<double>(s) >= n->min && static_cast<double>(s) <= n->max) out.push_back(s);
-  return out;
+    if (o.scene == g.name) return sizes_in_range(g, o.sizes);
+  return sizes_in_range(g, block.sizes);
 }
 
 // Every generator but the closed solids (generators/solids.cpp), which are the operands of set
@@ -78,9 +70,7 @@ std::vector<SceneSpec> scene_specs(const DrawBlock& block) {
 std::vector<std::optional<HeuristicChoice>> heuristic_choices(const DrawBlock& block) {
   if (block.incremental) return {std::nullopt};
   std::vector<std::optional<HeuristicChoice>> out;
-  if (block.heuristics.empty())
-    for (const auto& h : heuristics()) out.push_back(HeuristicChoice::parse(h.name));
-  for (const auto& label : block.heuristics) out.push_back(HeuristicChoice::parse(label));
+  for (auto& h : choices_or_all(block.heuristics)) out.emplace_back(std::move(h));
   return out;
 }
 

@@ -9,7 +9,6 @@
 #include "common/hash.h"
 #include "experiments/merge/set_operation.h"
 #include "solid_pairs.h"
-#include "split/registry.h"
 
 namespace bsp::experiments {
 
@@ -210,9 +209,6 @@ Jobs MergeBlock::expand() const {
   std::vector<std::string> names = pairs;
   if (names.empty())
     for (const auto& p : solid_pairs()) names.push_back(p.name);
-  std::vector<std::string> labels = heuristics;
-  if (labels.empty())
-    for (const auto& h : bsp::heuristics()) labels.push_back(h.name);
   const std::vector<SetOp> all_ops = ops.empty() ? std::vector<SetOp>{SetOp::Union, SetOp::Intersection,
                                                                       SetOp::Difference, SetOp::SymmetricDifference}
                                                  : ops;
@@ -220,11 +216,9 @@ Jobs MergeBlock::expand() const {
   for (const auto& name : names) {
     const SolidPairInfo& pair = find_solid_pair(name);
     for (auto n : pair_sizes(pair, *this))
-      for (const auto& label : labels) {
-        const HeuristicChoice h = HeuristicChoice::parse(label);
+      for (const auto& h : choices_or_all(heuristics))
         for (auto op : all_ops)
           for (auto seed : seeds) out.push_back(std::make_shared<MergeJob>(MergeSpec{pair.name, n, h, op, seed, points}));
-      }
   }
   return out;
 }

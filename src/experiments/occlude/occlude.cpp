@@ -9,7 +9,6 @@
 #include "common/hash.h"
 #include "experiments/occlude/occlusion_run.h"
 #include "metrics/traversal_cost.h"
-#include "split/registry.h"
 #include "tree/build.h"
 #include "validate/tree_invariants.h"
 
@@ -54,15 +53,6 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
   return b;
 }
 
-std::vector<std::uint64_t> sizes_in_range(const GeneratorInfo& g, const std::vector<std::uint64_t>& sizes) {
-  const ParamSpec* n = n_spec(g);
-  if (!n) return {0};
-  std::vector<std::uint64_t> out;
-  for (auto s : sizes)
-    if (static_cast<double>(s) >= n->min && static_cast<double>(s) <= n->max) out.push_back(s);
-  return out;
-}
-
 // Every view's culling, summed; the rays' proof into `validation`.
 json cull_views(const Tree& tree, const Occluder& occluder, const std::vector<Frustum>& views, json& validation) {
   json metrics = json::object();
@@ -90,15 +80,11 @@ json cull_views(const Tree& tree, const Occluder& occluder, const std::vector<Fr
 }  // namespace
 
 Jobs OccludeBlock::expand() const {
-  std::vector<std::string> labels = heuristics;
-  if (labels.empty())
-    for (const auto& h : bsp::heuristics()) labels.push_back(h.name);
   Jobs out;
   for (const auto& name : scenes) {
     const GeneratorInfo& g = find_generator(name);
     for (auto n : sizes_in_range(g, sizes))
-      for (const auto& label : labels) {
-        const HeuristicChoice h = HeuristicChoice::parse(label);
+      for (const auto& h : choices_or_all(heuristics)) {
         for (auto seed : seeds)
           out.push_back(std::make_shared<OccludeJob>(SceneRun::generated(g, {}, h, Shape::Strict, seed, n, views)));
       }
