@@ -28,7 +28,6 @@ class Block {
 struct Kind {
   std::string_view name = {};       // as records' id.kind and Job::kind() say it
   std::string_view suite_key = {};  // the key of its blocks in a suite file ("blocks", "merges", ...)
-  std::string_view summary = {};    // one line for docs and --help
   // Reads one block at `path` of the suite file; throws InputError ("FILE: PATH: problem").
   std::unique_ptr<const Block> (*parse)(const BlockReader& reader, const nlohmann::json& block, const std::string& path) = nullptr;
   // Whether the parser expands each block to refuse one that runs nothing. Not where expanding

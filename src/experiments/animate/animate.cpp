@@ -213,7 +213,6 @@ const Kind& animate_kind() {
   static const Kind kind{
       .name = "animate",
       .suite_key = "animations",
-      .summary = "scene x size x heuristic x strategy x moving objects x speed x seed: a tree kept frame by frame",
       .parse = parse_block,
       .timings = kTimings,
       .group_by = kGroupBy,

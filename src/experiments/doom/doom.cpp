@@ -307,7 +307,6 @@ const Kind& doom_kind() {
   static const Kind kind{
       .name = "doom",
       .suite_key = "doom",
-      .summary = "IWAD x map x (heuristic x seed | external builder | shipped nodes): Doom nodes, proved alike",
       .parse = parse_block,
       .expand_when_parsed = false,
       .timings = kTimings,

@@ -377,7 +377,6 @@ const Kind& draw_kind() {
   static const Kind kind{
       .name = "draw",
       .suite_key = "blocks",
-      .summary = "scene x size x heuristic x shape x seed: one tree each, measured and proved by Embree",
       .parse = parse_block,
       .timings = kTimings,
       .growth_metrics = kGrowthMetrics,

@@ -286,7 +286,6 @@ const Kind& merge_kind() {
   static const Kind kind{
       .name = "merge",
       .suite_key = "merges",
-      .summary = "solid pair x size x heuristic x set operation x seed: two solid trees merged, proved against CGAL",
       .parse = parse_block,
       .timings = kTimings,
       .group_by = kGroupBy,

@@ -141,7 +141,6 @@ const Kind& occlude_kind() {
   static const Kind kind{
       .name = "occlude",
       .suite_key = "occlusions",
-      .summary = "scene x size x heuristic x seed: beam-traced occlusion culling from metric views, proved by Embree",
       .parse = parse_block,
       .timings = kTimings,
       .growth_metrics = kGrowthMetrics,
