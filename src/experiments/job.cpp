@@ -23,4 +23,8 @@ nlohmann::json make_record(const Job& job, nlohmann::json id, nlohmann::json met
           {"timings", std::move(timings)}};
 }
 
+void pick_fields(const nlohmann::json& from, std::span<const JsonField> fields, nlohmann::json& out) {
+  for (const auto& f : fields) out[f.name] = from.at(nlohmann::json::json_pointer(f.pointer));
+}
+
 }  // namespace bsp::experiments

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -78,5 +79,15 @@ nlohmann::json make_record(const Job& job, nlohmann::json id, nlohmann::json met
                            double start_seconds);
 // Seconds on a steady clock, for make_record's start.
 double wall_seconds();
+
+// A record field and where it stands in a stats struct's JSON (a JSON pointer into its to_json, the
+// one place the struct becomes JSON), so a record takes its fields from there instead of copying
+// the struct's members one at a time.
+struct JsonField {
+  const char* name;
+  const char* pointer;
+};
+// Adds each field of `from` found at its pointer to `out` under its name.
+void pick_fields(const nlohmann::json& from, std::span<const JsonField> fields, nlohmann::json& out);
 
 }  // namespace bsp::experiments

@@ -42,16 +42,12 @@ constexpr std::string_view kGroupBy[] = {"builder_kind"};
 constexpr std::string_view kGrowthMetrics[] = {"segs", "splits", "nodes"};
 constexpr std::string_view kGrowthTimings[] = {"doom_cpu_seconds", "builder_cpu_seconds"};
 
-// A record field and where it is in to_json(DoomRun) (map_nodes.h), the one place a run becomes JSON.
-struct RunField {
-  const char* name;
-  const char* pointer;
-};
-constexpr RunField kMetricFields[] = {{"segs", "/segs"},           {"subsectors", "/subsectors"},
+// Record fields from to_json(DoomRun) (map_nodes.h).
+constexpr JsonField kMetricFields[] = {{"segs", "/segs"},           {"subsectors", "/subsectors"},
                                       {"nodes", "/nodes"},         {"splits", "/splits"},
                                       {"max_depth", "/max_depth"}, {"mean_depth", "/mean_depth"}};
 // Ours only: what the build started from, what it did, and what rounding split vertices did.
-constexpr RunField kOurMetricFields[] = {{"segments", "/segments"},
+constexpr JsonField kOurMetricFields[] = {{"segments", "/segments"},
                                          {"fallbacks", "/fallbacks"},
                                          {"mixed_leaves", "/mixed_leaves"},
                                          {"zero_length_linedefs", "/zero_length_linedefs"},
@@ -60,15 +56,10 @@ constexpr RunField kOurMetricFields[] = {{"segments", "/segments"},
                                          {"rounding_max_shift", "/rounding/max_shift"},
                                          {"rounding_mean_shift", "/rounding/mean_shift"},
                                          {"rounding_collapsed_segs", "/rounding/collapsed_segs"}};
-constexpr RunField kInvariantFields[] = {{"violations", "/check_violations"},
+constexpr JsonField kInvariantFields[] = {{"violations", "/check_violations"},
                                          {"first_problems", "/check_problems"},
                                          {"worst_side_distance", "/worst_side_distance"},
                                          {"worst_convexity_distance", "/worst_convexity_distance"}};
-
-json pick(const json& from, std::span<const RunField> fields, json out = json::object()) {
-  for (const auto& f : fields) out[f.name] = from.at(json::json_pointer(f.pointer));
-  return out;
-}
 
 // Every registered heuristic and every Doom preset: a block without heuristics sweeps them all, so a
 // heuristic added to the registry is swept without further wiring.
@@ -283,9 +274,11 @@ nlohmann::json DoomJob::run(const RunContext& context) const {
   id["linedefs"] = map.linedefs.size();
   id["map_hash"] = map_hash(wad, map);
   if (spec_.builder.kind == DoomBuilder::Kind::External) id["builder_version"] = find_builder(spec_.label).version;
-  json metrics = pick(described, kMetricFields);
-  if (ours) metrics = pick(described, kOurMetricFields, std::move(metrics));
-  json record = make_record(*this, std::move(id), std::move(metrics), pick(described, kInvariantFields),
+  json metrics = json::object(), invariants = json::object();
+  pick_fields(described, kMetricFields, metrics);
+  if (ours) pick_fields(described, kOurMetricFields, metrics);
+  pick_fields(described, kInvariantFields, invariants);
+  json record = make_record(*this, std::move(id), std::move(metrics), std::move(invariants),
                             std::move(validation), nullptr, std::move(timings), start);
   if (!run.error.empty()) record["error"] = run.error;
   return record;

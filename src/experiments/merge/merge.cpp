@@ -38,22 +38,17 @@ constexpr std::string_view kGroupBy[] = {"operation"};
 constexpr std::string_view kGrowthMetrics[] = {"before_nodes", "after_nodes", "partition_nodes"};
 constexpr std::string_view kGrowthTimings[] = {"merge_cpu_seconds", "merge_seconds"};
 
-// A record field and where it is in to_json(SolidCheck) (validate/solid_check.h): the one place a
-// check becomes JSON, from which the record takes what it reports.
-struct CheckField {
-  const char* name;
-  const char* pointer;
-};
+// Record fields from to_json(SolidCheck) (validate/solid_check.h).
 // The boundary's closure: what must be zero, with what was done to close it. Volumes, not their
 // relative errors: an error near 1e-16 is rounding noise that any change of summation order moves,
 // while the volumes themselves compare within the gate's relative tolerance.
-constexpr CheckField kInvariantFields[] = {{"border_edges", "/boundary/border_edges"},
+constexpr JsonField kInvariantFields[] = {{"border_edges", "/boundary/border_edges"},
                                            {"repeated_directed_edges", "/boundary/repeated_directed_edges"},
                                            {"t_junctions_split", "/boundary/t_junctions_split"},
                                            {"dropped_faces", "/boundary/dropped_faces"},
                                            {"boundary_volume", "/boundary/volume"}};
 // Point membership and volume against CGAL: what must be zero, with what was counted apart.
-constexpr CheckField kValidationFields[] = {{"points", "/points"},
+constexpr JsonField kValidationFields[] = {{"points", "/points"},
                                             {"compared", "/compared"},
                                             {"mismatches", "/mismatches"},
                                             {"on_operand_surface", "/on_operand_surface"},
@@ -61,12 +56,7 @@ constexpr CheckField kValidationFields[] = {{"points", "/points"},
                                             {"within_plane_eps_disagree", "/within_plane_eps_disagree"},
                                             {"corefine_volume", "/corefine_volume"},
                                             {"corefine_error", "/corefine_error"}};
-constexpr CheckField kCheckMetricFields[] = {{"result_volume", "/tree_volume"}, {"boundary_faces", "/boundary/faces"}};
-
-json pick(const json& from, std::span<const CheckField> fields, json out = json::object()) {
-  for (const auto& f : fields) out[f.name] = from.at(json::json_pointer(f.pointer));
-  return out;
-}
+constexpr JsonField kCheckMetricFields[] = {{"result_volume", "/tree_volume"}, {"boundary_faces", "/boundary/faces"}};
 
 // {"a": {"b": 1}} as {"a_b": 1}, so aggregation summarises every field.
 void flatten_into(const json& from, const std::string& prefix, json& out) {
@@ -85,19 +75,22 @@ json merge_metrics(const SetOperationRun& run, const json& check, json& timings)
   }
   flatten_into(to_json(run.stats), "", m);
   split_timings(m, timings, "", kTimings);
-  return pick(check, kCheckMetricFields, std::move(m));
+  pick_fields(check, kCheckMetricFields, m);
+  return m;
 }
 
 json boundary_invariants(const SolidCheck& c, const json& check) {
   const bool volume_ok = c.boundary_volume_relative_error <= kVolumeRelativeTolerance;
-  json out = pick(check, kInvariantFields);
+  json out = json::object();
+  pick_fields(check, kInvariantFields, out);
   out["violations"] = c.boundary.edges.border_edges + (volume_ok ? 0 : 1);
   return out;
 }
 
 json proof_validation(const SolidCheck& c, const json& check) {
   const bool volume_ok = c.corefine_error.empty() && c.volume_relative_error <= kVolumeRelativeTolerance;
-  json out = pick(check, kValidationFields);
+  json out = json::object();
+  pick_fields(check, kValidationFields, out);
   out["violations"] = c.mismatches + (volume_ok ? 0 : 1);
   return out;
 }
