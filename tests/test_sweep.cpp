@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -32,6 +33,8 @@
 #include "experiments/heuristic_choice.h"
 #include "experiments/merge/merge.h"
 #include "experiments/occlude/occlude.h"
+#include "experiments/reference_build.h"
+#include "experiments/timing.h"
 #include "gate/bench_gate.h"
 #include "gate/regress.h"
 #include "kinds/kinds.h"
@@ -216,9 +219,13 @@ void set_samples(nlohmann::json& report, const std::string& field, double factor
   for (auto& run : report["runs"]) {
     time *= 1.7;  // jobs of different sizes
     const double f = heuristic.empty() || run["id"]["heuristic"] == heuristic ? factor : 1.0;
-    nlohmann::json samples = nlohmann::json::array();
-    for (double s : kSpread) samples.push_back(time * s * f * calibration / 0.1);
+    nlohmann::json samples = nlohmann::json::array(), references = nlohmann::json::array();
+    for (double s : kSpread) {
+      samples.push_back(time * s * f * calibration / 0.1);
+      references.push_back(2e-3 * calibration / 0.1);  // the machine's speed, as the calibration says
+    }
     run["timings"][field] = samples;
+    run["timings"][field.substr(0, field.find("_cpu_samples")) + "_reference_samples"] = references;
     run["calibration_seconds"] = calibration;
   }
 }
@@ -463,10 +470,32 @@ TEST(SweepRecord, DeclaredTimingFieldsAloneAreMovedOutOfTheMetrics) {
   EXPECT_EQ(validation, (nlohmann::json{{"violations", 0}}));
   EXPECT_EQ(experiments::find_timing_field(fields, "renamed_build_seconds"), nullptr);
   EXPECT_EQ(timing_field_name(fields, TimingRole::GatedSamples), "build_cpu_samples");
-  // The gate finds each kind's gated samples through the kinds' registry.
-  EXPECT_EQ(gated_timing({{"kind", "merge"}}), "merge_cpu_samples");
-  EXPECT_EQ(gated_timing({{"kind", "animate"}}), "update_cpu_samples");
-  EXPECT_EQ(gated_timing(nlohmann::json::object()), "build_cpu_samples");
+  // The gate finds each kind's gated samples, and their references, through the kinds' registry.
+  EXPECT_EQ(timing_of_role({{"kind", "merge"}}, TimingRole::GatedSamples), "merge_cpu_samples");
+  EXPECT_EQ(timing_of_role({{"kind", "animate"}}, TimingRole::GatedSamples), "update_cpu_samples");
+  EXPECT_EQ(timing_of_role(nlohmann::json::object(), TimingRole::GatedSamples), "build_cpu_samples");
+  EXPECT_EQ(timing_of_role({{"kind", "doom"}}, TimingRole::ReferenceSamples), "doom_reference_samples");
+}
+
+// The in-run reference: a 2D segment stands up as a wall of two triangles, a polygon fans into
+// n - 2 of them, anything smaller adds none; the build runs. Every timed batch has its reference.
+TEST(ReferenceBuild, SegmentsStandAsWallsAndPolygonsFanIntoTriangles) {
+  const auto poly = [](std::initializer_list<Vec3> points) {
+    Polygon p;
+    for (const Vec3& v : points) p.verts.push_back({v});
+    return p;
+  };
+  const std::vector<Polygon> input{poly({{0, 0, 0}, {1, 0, 0}}), poly({{1, 0, 0}, {1, 2, 0}}),
+                                   poly({{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}, {-1, 0.5, 1}}),
+                                   poly({{5, 5, 5}})};
+  const ReferenceBuild reference(input);
+  EXPECT_EQ(reference.triangles(), 2u + 2u + 3u);
+  EXPECT_NO_THROW(reference.run());
+  const TimedBatches batches = time_batches([] {}, 1.0, [&] { reference.run(); });
+  ASSERT_EQ(batches.samples.size(), static_cast<std::size_t>(kBatches));
+  ASSERT_EQ(batches.reference.size(), batches.samples.size());
+  for (double r : batches.reference) EXPECT_GT(r, 0.0);
+  EXPECT_TRUE(time_batches([] {}).reference.empty());
 }
 
 // The run record of one job: build samples per experiments/timing.h (short builds repeated in each batch),
@@ -478,6 +507,10 @@ TEST(SweepRecord, RunRecordHoldsBuildSamplesAndTheRayShootingCheck) {
   ASSERT_EQ(samples.size(), static_cast<std::size_t>(kBatches));
   // A 40- or 80-polygon build takes far less than kMinBatchSeconds, so every batch repeats it.
   EXPECT_GT(run["timings"]["build_cpu_builds"].get<std::uint64_t>(), 2u * kBatches);
+  // One reference sample per batch: the gate divides each sample by its own.
+  const auto& references = run["timings"]["build_reference_samples"];
+  ASSERT_EQ(references.size(), samples.size());
+  for (const auto& r : references) EXPECT_GT(r.get<double>(), 0.0);
   EXPECT_GT(run["ray_shooting"]["rays"].get<std::uint64_t>(), 0u);
   EXPECT_EQ(run["ray_shooting"]["mismatches"], 0);
   for (const auto& [k, v] : run["timings"].items()) EXPECT_NE(find_timing_field(run["id"], k), nullptr) << k;
@@ -508,6 +541,7 @@ TEST(SweepRecord, MergeRunHoldsItsCostItsProofAndMergeSamples) {
     EXPECT_EQ(run["invariants"]["violations"], 0);
     EXPECT_EQ(run["invariants"]["border_edges"], 0);
     EXPECT_EQ(run["timings"]["merge_cpu_samples"].size(), static_cast<std::size_t>(kBatches));
+    EXPECT_EQ(run["timings"]["merge_reference_samples"].size(), static_cast<std::size_t>(kBatches));
     for (const auto& [k, value] : run["timings"].items()) EXPECT_NE(find_timing_field(run["id"], k), nullptr) << k;
   }
   // Aggregates group merges by pair, heuristic and operation.
@@ -958,6 +992,56 @@ TEST_F(RegressGate, OneOutlierSampleDoesNotFail) {
 TEST_F(RegressGate, SlowerMachineWithSlowerCalibrationPasses) {
   set_build_samples(current, 1.0, "", 0.4);  // every time and the calibration four times longer
   EXPECT_FALSE(fails());
+}
+
+// Reference samples (experiments/timing.h) for the build samples of `report`'s runs: 2 ms per build
+// of the reference, times `slow` for the runs `slowed` picks, as a host slows both alike.
+void set_references(nlohmann::json& report, double slow, const std::function<bool(std::size_t)>& slowed) {
+  for (std::size_t i = 0; i < report["runs"].size(); ++i) {
+    auto& t = report["runs"][i]["timings"];
+    nlohmann::json refs = nlohmann::json::array();
+    for (std::size_t k = 0; k < t["build_cpu_samples"].size(); ++k) {
+      if (slowed(i)) t["build_cpu_samples"][k] = t["build_cpu_samples"][k].get<double>() * slow;
+      refs.push_back(2e-3 * (slowed(i) ? slow : 1.0));
+    }
+    t["build_reference_samples"] = refs;
+  }
+}
+
+// The machine runs 1.7 times slower for half the current sweep (every heuristic alike, as a host's
+// load does), after the calibration was taken: the references timed beside the batches slowed too,
+// so no group fails. Without them (the same samples judged by the calibration) groups fail, and a
+// heuristic made 1.6 times slower under the same load still fails alone.
+TEST_F(RegressGate, HostSlowdownDuringTheSweepCancelsAgainstTheInRunReference) {
+  const auto second_half = [&](std::size_t i) { return i >= current["runs"].size() / 2; };
+  set_references(baseline, 1.0, [](std::size_t) { return false; });
+  set_references(current, 1.7, second_half);
+  RegressResult r = gate();
+  EXPECT_FALSE(r.failed());
+  EXPECT_EQ(r.timing_pairs_by_reference, 16u);
+  for (auto& run : current["runs"]) run["timings"].erase("build_reference_samples");
+  r = gate();
+  EXPECT_TRUE(r.failed());
+  EXPECT_EQ(r.timing_pairs_by_reference, 0u);
+
+  set_build_samples(current, 1.6, "random");
+  set_references(current, 1.7, second_half);
+  r = gate();
+  ASSERT_TRUE(r.failed());
+  for (const auto& c : r.changes) EXPECT_NE(c.run.find(" random "), std::string::npos) << c.run;
+}
+
+// A baseline from before the references: both sides are divided by their calibrations, whatever
+// the current references say.
+TEST_F(RegressGate, BaselineWithoutReferencesComparesBothSidesByCalibration) {
+  for (auto& run : baseline["runs"]) run["timings"].erase("build_reference_samples");
+  set_references(current, 1000.0, [](std::size_t i) { return i % 2 == 0; });
+  for (std::size_t i = 0; i < current["runs"].size(); i += 2)  // only the references stay 1000x
+    for (auto& x : current["runs"][i]["timings"]["build_cpu_samples"]) x = x.get<double>() / 1000.0;
+  const RegressResult r = gate();
+  EXPECT_FALSE(r.failed());
+  EXPECT_EQ(r.timing_pairs, 16u);
+  EXPECT_EQ(r.timing_pairs_by_reference, 0u);
 }
 
 TEST_F(RegressGate, MissingRunViolationsAndRayShootingMismatchesFailButANewRunDoesNot) {

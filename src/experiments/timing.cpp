@@ -59,9 +59,20 @@ PlantedSlowdown parse_planted_slowdown(const std::string& text) {
 
 double TimedBatches::median() const { return bsp::median(samples); }
 
-TimedBatches time_batches(const std::function<void()>& work, double plant) {
+double time_batch(const std::function<void()>& work) {
+  const double start = thread_cpu_seconds();
+  std::uint64_t runs = 0;
+  do {
+    work();
+    ++runs;
+  } while (thread_cpu_seconds() - start < kMinBatchSeconds);
+  return (thread_cpu_seconds() - start) / static_cast<double>(runs);
+}
+
+TimedBatches time_batches(const std::function<void()>& work, double plant, const std::function<void()>& reference) {
   TimedBatches out;
   for (int s = 0; s < kBatches; ++s) {
+    if (reference) out.reference.push_back(time_batch(reference));
     const double start = thread_cpu_seconds();
     std::uint64_t batch = 0;
     do {

@@ -14,6 +14,16 @@
 // time divided by its repetitions: the time per run over at least 2 ms, a thousand times the
 // scheduler's accounting granularity, so 0.05 ms builds are measurable too. Thread CPU time, not wall
 // time: on a shared machine the wall time measures the other users as much as the code.
+//
+// The in-run reference. Thread CPU time is not enough on a virtual machine: the same build of the
+// same input, in one process, runs at one speed for a while and then about 1.6 times slower for a
+// while (the cause lies with the host; the guest has no performance counters to tell), while a
+// small sort-and-square-root kernel beside it moves by 10%, so one calibration per sweep cannot
+// follow it (docs/results/gate-timing.md). Bias from a state of the machine that the experimenter
+// neither controls nor sees is common [Mytkowicz2009]. So each batch is preceded by a batch of a
+// reference: fixed code of the same character on the job's own input (Embree's BVH build,
+// reference_build.h), timed the same way. A state that slows the work slows the reference timed
+// milliseconds before it, and the gate divides each sample by its batch's reference.
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -30,6 +40,8 @@ enum class TimingRole {
   Rate,            // per wall-clock second: reported, not gated
   Cpu,             // thread CPU seconds of one measurement: reported, not gated
   GatedSamples,    // thread CPU seconds per run of the work, one per timed batch: what the gate compares
+  ReferenceSamples,  // thread CPU seconds per run of the in-run reference, one per batch, paired with
+                     // the gated samples: the gate compares their ratios
   SamplesMedian,   // the median of the gated samples, for reports and growth fits
   SampleCount,     // runs timed for the samples: depends on the machine's speed, so not deterministic
   UngatedSamples,  // samples of work that is not ours (an external tool): reported, not gated
@@ -67,11 +79,16 @@ struct PlantedSlowdown {
 PlantedSlowdown parse_planted_slowdown(const std::string& text);
 
 struct TimedBatches {
-  std::vector<double> samples;  // CPU seconds per run of the work, one per batch
-  std::uint64_t runs = 0;       // runs timed in all
+  std::vector<double> samples;    // CPU seconds per run of the work, one per batch
+  std::vector<double> reference;  // CPU seconds per run of the reference, one per batch; empty without one
+  std::uint64_t runs = 0;         // runs timed in all
   double median() const;
 };
-// kBatches batches of `work` (see the header comment), each slowed by `plant` when it is above 1.
-TimedBatches time_batches(const std::function<void()>& work, double plant = 1.0);
+// kBatches batches of `work` (see the header comment), each slowed by `plant` when it is above 1,
+// and each preceded by a batch of `reference` when there is one.
+TimedBatches time_batches(const std::function<void()>& work, double plant = 1.0,
+                          const std::function<void()>& reference = {});
+// CPU seconds per run of `work`, repeated until at least kMinBatchSeconds have passed: one batch.
+double time_batch(const std::function<void()>& work);
 
 }  // namespace bsp::experiments

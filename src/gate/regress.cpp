@@ -53,10 +53,12 @@ const nlohmann::json& section_of(const nlohmann::json& run, const char* section)
   return run.contains(section) ? run[section] : none;
 }
 
-// A group's calibrated build samples, each divided by its job's median calibrated baseline sample.
+// A group's normalized samples, each divided by its job's median normalized baseline sample.
 struct TimingGroup {
   std::string field;  // the gated timing
   std::vector<double> baseline, current;
+  std::uint64_t pairs = 0;       // matched pairs of runs with samples on both sides
+  std::uint64_t references = 0;  // of those, pairs divided by their references, not by calibration
 };
 
 struct Comparer {
@@ -105,24 +107,54 @@ struct Comparer {
 // The gated samples of a run: its kind's GatedSamples timing (a drawing run's builds, a merge run's
 // merges, an animate run's updates, an occlude run's cullings, a Doom run's builds by our
 // heuristic; an external builder's runs are not ours to gate, and the shipped nodes are not timed).
-std::string gated_field(const nlohmann::json& run) { return std::string(results::gated_timing(section_of(run, "id"))); }
+std::string gated_field(const nlohmann::json& run) {
+  return std::string(results::timing_of_role(section_of(run, "id"), experiments::TimingRole::GatedSamples));
+}
 
-// The gated samples of a run divided by its calibration time; empty when it has none.
-std::vector<double> calibrated_samples(const nlohmann::json& run) {
+// The run's timing `field` as numbers; empty when it has none or any entry is not a positive number.
+std::vector<double> positive_numbers(const nlohmann::json& run, std::string_view field) {
+  const auto& values = section_of(run, "timings").value(std::string(field), nlohmann::json::array());
   std::vector<double> out;
-  const auto& samples = section_of(run, "timings").value(gated_field(run), nlohmann::json::array());
-  const double calibration = run["calibration_seconds"].get<double>();
-  for (const auto& s : samples)
-    if (s.is_number()) out.push_back(s.get<double>() / calibration);
+  for (const auto& v : values) {
+    if (!v.is_number() || !(v.get<double>() > 0)) return {};
+    out.push_back(v.get<double>());
+  }
   return out;
 }
 
-// Adds a matched pair of runs to its timing group, on the scale of the baseline job's median.
+// The reference sample of each gated sample of the run (experiments/timing.h); empty when the run
+// has none for every sample (reports made before the references, external work).
+std::vector<double> reference_samples(const nlohmann::json& run) {
+  const auto field = results::timing_of_role(section_of(run, "id"), experiments::TimingRole::ReferenceSamples);
+  std::vector<double> out = field.empty() ? std::vector<double>{} : positive_numbers(run, field);
+  const auto& gated = section_of(run, "timings").value(gated_field(run), nlohmann::json::array());
+  if (out.size() != gated.size()) out.clear();
+  return out;
+}
+
+// The gated samples of a run, each divided by its batch's reference sample when `by_reference`,
+// else by the sweep's calibration time; empty when it has none.
+std::vector<double> normalized_samples(const nlohmann::json& run, bool by_reference) {
+  std::vector<double> out;
+  const auto& samples = section_of(run, "timings").value(gated_field(run), nlohmann::json::array());
+  const std::vector<double> reference = by_reference ? reference_samples(run) : std::vector<double>{};
+  const double calibration = run["calibration_seconds"].get<double>();
+  for (std::size_t i = 0; i < samples.size(); ++i)
+    if (samples[i].is_number()) out.push_back(samples[i].get<double>() / (by_reference ? reference[i] : calibration));
+  return out;
+}
+
+// Adds a matched pair of runs to its timing group, on the scale of the baseline job's median. Both
+// runs are divided by their batches' references when both have them; otherwise (a baseline made
+// before the references) both by their sweeps' calibrations, so the two are always alike.
 void add_timings(const nlohmann::json& b, const nlohmann::json& c, TimingGroup& group) {
   group.field = "timings." + gated_field(b);
-  const std::vector<double> base = calibrated_samples(b), cur = calibrated_samples(c);
+  const bool by_reference = !reference_samples(b).empty() && !reference_samples(c).empty();
+  const std::vector<double> base = normalized_samples(b, by_reference), cur = normalized_samples(c, by_reference);
   const double scale = median(base);
   if (base.empty() || cur.empty() || !(scale > 0)) return;
+  ++group.pairs;
+  group.references += by_reference;
   for (double x : base) group.baseline.push_back(x / scale);
   for (double x : cur) group.current.push_back(x / scale);
 }
@@ -133,6 +165,8 @@ void judge_timings(const std::map<std::string, TimingGroup>& groups, const Regre
     if (g.baseline.empty() || g.current.empty()) continue;
     ++result.timing_groups;
     result.timing_samples += g.current.size();
+    result.timing_pairs += g.pairs;
+    result.timing_pairs_by_reference += g.references;
     const double ratio = median(g.current) / median(g.baseline);
     const MannWhitney test = mann_whitney_u(g.current, g.baseline);
     const bool slower = test.p < options.alpha && ratio >= options.time_tolerance;
@@ -203,7 +237,8 @@ nlohmann::json to_json(const RegressResult& result) {
                        {"current_samples", t.current_samples}, {"ratio", t.ratio}, {"p", t.p}, {"verdict", t.verdict}});
   return {{"changes", changes}, {"timing_tests", timings}, {"runs_compared", result.runs_compared},
           {"values_compared", result.values_compared}, {"timing_groups", result.timing_groups},
-          {"timing_samples", result.timing_samples}, {"failed", result.failed()}};
+          {"timing_samples", result.timing_samples}, {"timing_pairs", result.timing_pairs},
+          {"timing_pairs_by_reference", result.timing_pairs_by_reference}, {"failed", result.failed()}};
 }
 
 RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current,
@@ -238,7 +273,8 @@ void print_regress(const RegressResult& result, std::ostream& out) {
   out << "regress: " << result.runs_compared << (result.benchmarks ? " benchmarks, " : " runs, ")
       << result.values_compared << " values";
   if (!result.benchmarks)
-    out << ", " << result.timing_groups << " build-time groups (" << result.timing_samples << " samples)";
+    out << ", " << result.timing_groups << " build-time groups (" << result.timing_samples << " samples; "
+        << result.timing_pairs_by_reference << " of " << result.timing_pairs << " runs against their in-run reference)";
   out << " compared; " << (result.failed() ? "REGRESSION" : "no regression") << "\n";
 }
 

@@ -15,10 +15,14 @@
 // run against a fixed factor. Each run holds kBuildSamples thread-CPU samples per build
 // (experiments/timing.h); a merge run holds as many per merge (experiments/merge/merge.h), grouped by pair x heuristic
 // x operation and judged the same way, and a Doom run of our heuristic as many per build of the
-// map's nodes, grouped by IWAD x heuristic label (maps pooled). Every sample is divided by its
-// run's calibration kernel time (calibration.h), so a slower or faster machine cancels out, and
-// then by the median calibrated baseline sample of the same job, so a group's sizes and seeds share
-// one scale: baseline values scatter around 1 and a job k times slower gives values around k. The
+// map's nodes, grouped by IWAD x heuristic label (maps pooled). Every sample is divided by the
+// in-run reference timed just before its batch (experiments/timing.h, reference_build.h), so a
+// slower or faster machine, and a machine whose speed changes while it runs, cancels out; when
+// either run has no references (a report made before them), both runs' samples are divided by
+// their sweeps' calibration kernel times (sweep/calibration.h) instead, which follows a machine's
+// speed only as it was when the sweep started. Then each is divided by the median normalized
+// baseline sample of the same job, so a group's sizes and seeds share one scale: baseline values
+// scatter around 1 and a job k times slower gives values around k. The
 // group's pooled baseline and current values are compared with the two-sided Mann–Whitney U test
 // (metrics/statistics.h), as Google Benchmark's compare.py compares repetitions. The slowdown is
 // the ratio of the pooled medians (current over baseline). A group FAILS only when it is both
@@ -80,6 +84,8 @@ struct RegressResult {
   std::uint64_t values_compared = 0;
   std::uint64_t timing_groups = 0;   // groups whose build times were tested
   std::uint64_t timing_samples = 0;  // current build samples in those groups
+  std::uint64_t timing_pairs = 0;    // matched runs in those groups
+  std::uint64_t timing_pairs_by_reference = 0;  // of those, compared against their in-run references
   bool benchmarks = false;           // runs are benchmarks of two Google Benchmark outputs (bench_gate.h)
   bool failed() const;
 };

@@ -30,9 +30,9 @@ const experiments::TimingField* find_timing_field(const nlohmann::json& id, std:
   return kind ? experiments::find_timing_field(kind->timings, name) : nullptr;
 }
 
-std::string_view gated_timing(const nlohmann::json& id) {
+std::string_view timing_of_role(const nlohmann::json& id, experiments::TimingRole role) {
   const experiments::Kind* kind = kind_of(id);
-  return kind ? experiments::timing_field_name(kind->timings, experiments::TimingRole::GatedSamples) : std::string_view{};
+  return kind ? experiments::timing_field_name(kind->timings, role) : std::string_view{};
 }
 
 bool judged_for_violations(const nlohmann::json& id) {

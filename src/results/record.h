@@ -19,8 +19,9 @@ const experiments::Kind* kind_of(const nlohmann::json& id);
 // The field of the record's kind declared as `name` in its timings; nullptr when there is none.
 const experiments::TimingField* find_timing_field(const nlohmann::json& id, std::string_view name);
 
-// The name of the timing the gate compares for this record's kind (TimingRole::GatedSamples).
-std::string_view gated_timing(const nlohmann::json& id);
+// The name of this record's kind's first timing of `role` (TimingRole::GatedSamples: the timing the
+// gate compares; ReferenceSamples: what it compares them against); empty when it has none.
+std::string_view timing_of_role(const nlohmann::json& id, experiments::TimingRole role);
 
 // Whether the run's violations are ours to answer for (Kind::judged_for_violations).
 bool judged_for_violations(const nlohmann::json& id);

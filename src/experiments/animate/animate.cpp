@@ -9,6 +9,7 @@
 #include "common/hash.h"
 #include "dynamic/updater.h"
 #include "experiments/animate/animation_run.h"
+#include "experiments/reference_build.h"
 
 namespace bsp::experiments {
 
@@ -18,6 +19,8 @@ using nlohmann::json;
 
 constexpr TimingField kTimings[] = {
     {"update_cpu_samples", TimingRole::GatedSamples, "thread CPU seconds of each frame's update, frames 1 on"},
+    {"update_reference_samples", TimingRole::ReferenceSamples,
+     "thread CPU seconds per Embree BVH build of the first frame, one batch before each update: the gate divides each sample by it (experiments/reference_build.h)"},
     {"update_cpu_seconds", TimingRole::SamplesMedian, "the median of update_cpu_samples"},
     {"update_cpu_seconds_max", TimingRole::Cpu, "the slowest update"},
     {"start_cpu_seconds", TimingRole::Cpu, "thread CPU seconds of the strategy's first frame (its whole build)"},
@@ -189,6 +192,8 @@ nlohmann::json AnimateJob::run(const RunContext&) const {
   settings.views.views = static_cast<int>(scene_.views);
   settings.check_every = animate_.check_every;
   settings.drift_every = animate_.drift_every;
+  const ReferenceBuild reference(animation.frame(0).polygons);
+  settings.reference = [&] { reference.run(); };
   const AnimationRun run =
       run_animation(animation, *updater, [&] { return h.splitter(scene_.seed); }, {}, settings);
   const json& s = run.summary;
@@ -200,6 +205,7 @@ nlohmann::json AnimateJob::run(const RunContext&) const {
   id["moving_fraction"] = animation.describe()["moving_fraction"];
   id["scene_hash"] = scene_json(animation.static_scene())["hash"];
   json timings{{"update_cpu_samples", run.update_seconds},
+               {"update_reference_samples", run.reference_seconds},
                {"update_cpu_seconds", s.value("update_cpu_seconds_median", 0.0)},
                {"update_cpu_seconds_max", s.value("update_cpu_seconds_max", 0.0)},
                {"start_cpu_seconds", s["start_cpu_seconds"]}};

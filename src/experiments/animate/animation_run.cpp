@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "experiments/timing.h"
 #include "metrics/statistics.h"
 #include "metrics/traversal_cost.h"
 #include "tree/build.h"
@@ -167,9 +168,11 @@ AnimationRun run_animation(const Animation& animation, Updater& updater,
   const std::span<const Polygon> still(first.polygons.data(), animation.static_scene().polygons.size());
   const std::vector<Frustum> cost_views = metric_views(bounds(animation.static_scene()), kCostViews);
   std::vector<FrameRecord> frames;
+  std::vector<double> reference_seconds;
   for (std::uint32_t f = 0; f < spec.frames; ++f) {
     const Scene input = animation.frame(f);
     const auto moving = std::span<const Polygon>(input.polygons).subspan(still.size());
+    if (f > 0 && settings.reference) reference_seconds.push_back(time_batch(settings.reference));
     const UpdateWork work = f == 0 ? updater.start(still, moving, spec.moving) : updater.update(moving);
     const bool last = f + 1 == spec.frames;
     frames.push_back(check_frame(updater, work, input.polygons, f % settings.check_every == 0 || last, settings.views,
@@ -181,7 +184,7 @@ AnimationRun run_animation(const Animation& animation, Updater& updater,
                                        traversal_cost(fresh, cost_views)};
     }
   }
-  AnimationRun run{summary(frames), frames_json(frames), {}};
+  AnimationRun run{summary(frames), frames_json(frames), {}, std::move(reference_seconds)};
   for (std::size_t f = 1; f < frames.size(); ++f) run.update_seconds.push_back(frames[f].work.seconds);
   return run;
 }

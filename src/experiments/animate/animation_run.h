@@ -22,6 +22,9 @@ struct AnimationRunSettings {
   ValidationSettings views;        // views = 0: invariants only
   std::uint32_t check_every = 1;   // check every N-th frame and the last
   std::uint32_t drift_every = 0;   // 0: no fresh builds
+  // The in-run reference (experiments/timing.h), timed as one batch just before each update; none
+  // when empty.
+  std::function<void()> reference;
 };
 
 struct AnimationRun {
@@ -30,7 +33,8 @@ struct AnimationRun {
   // fragments_median, culled_nodes_visited_median, update_work_total, drift_last}
   nlohmann::json summary;
   nlohmann::json per_frame;
-  std::vector<double> update_seconds;  // thread CPU seconds of each update, frames 1 on
+  std::vector<double> update_seconds;     // thread CPU seconds of each update, frames 1 on
+  std::vector<double> reference_seconds;  // per update: CPU seconds per run of the reference before it
 };
 
 // `fresh_splitter` makes the splitter of each fresh build; `build` its options.

@@ -9,6 +9,7 @@
 #include "experiments/doom/iwads.h"
 #include "experiments/doom/node_builders.h"
 #include "experiments/heuristic_choice.h"
+#include "experiments/reference_build.h"
 #include "io/doom_map.h"
 #include "io/doom_nodes.h"
 #include "metrics/statistics.h"
@@ -27,6 +28,8 @@ constexpr TimingField kTimings[] = {
     {"doom_cpu_samples", TimingRole::GatedSamples,
      "thread CPU seconds per build of a Doom map's nodes (leafy tree and vanilla lumps), one per timed batch of at "
      "least 2 ms (our heuristics only)"},
+    {"doom_reference_samples", TimingRole::ReferenceSamples,
+     "thread CPU seconds per Embree BVH build of the map's segments stood up as walls, one batch before each timed batch: the gate divides each sample by it (experiments/reference_build.h)"},
     {"doom_cpu_seconds", TimingRole::SamplesMedian, "the median of doom_cpu_samples"},
     {"doom_cpu_runs", TimingRole::SampleCount, "builds timed for the samples: depends on the machine's speed"},
     {"builder_cpu_samples", TimingRole::UngatedSamples,
@@ -138,8 +141,11 @@ std::string map_hash(const Wad& wad, const DoomMap& map) {
 // The segments are made once, outside the timed region, as run_doom times ours.
 void time_ours(const DoomMap& map, const DoomBuilder& b, std::uint64_t seed, double plant, json& timings) {
   const DoomSegs segs = doom_segs(map);
-  const TimedBatches batches = time_batches([&] { build_our_nodes(map, segs, b, seed); }, plant);
+  const ReferenceBuild reference(segs.segs);
+  const TimedBatches batches =
+      time_batches([&] { build_our_nodes(map, segs, b, seed); }, plant, [&] { reference.run(); });
   timings["doom_cpu_samples"] = batches.samples;
+  timings["doom_reference_samples"] = batches.reference;
   timings["doom_cpu_runs"] = batches.runs;
   timings["doom_cpu_seconds"] = batches.median();
 }

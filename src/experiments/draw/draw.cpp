@@ -8,6 +8,7 @@
 
 #include "catalog.h"
 #include "common/cpu_time.h"
+#include "experiments/reference_build.h"
 #include "geometry/segment2.h"
 #include "io/mesh_reader.h"
 #include "mesh_scenes.h"
@@ -28,6 +29,8 @@ constexpr TimingField kTimings[] = {
     {"build_seconds", TimingRole::Wall, "wall time of the first build (the tree that is measured)"},
     {"build_cpu_samples", TimingRole::GatedSamples,
      "thread CPU seconds per build, one per timed batch of at least 2 ms (experiments/timing.h)"},
+    {"build_reference_samples", TimingRole::ReferenceSamples,
+     "thread CPU seconds per Embree BVH build of the same input, one batch before each timed batch: the gate divides each sample by it (experiments/reference_build.h)"},
     {"build_cpu_seconds", TimingRole::SamplesMedian, "the median of build_cpu_samples"},
     {"build_cpu_builds", TimingRole::SampleCount, "builds timed for the samples: depends on the machine's speed"},
     {"metrics_cpu_seconds", TimingRole::Cpu, "thread CPU seconds of measure_tree"},
@@ -343,9 +346,11 @@ nlohmann::json DrawJob::run(const RunContext& context) const {
   const Scene scene = spec_.make_scene();
   json timings = json::object();
   const Tree tree = build_once(spec_, scene);
-  const TimedBatches batches =
-      time_batches([&] { build_once(spec_, scene); }, context.slowdown(spec_.heuristic_label()));
+  const ReferenceBuild reference(scene.polygons);
+  const TimedBatches batches = time_batches([&] { build_once(spec_, scene); },
+                                            context.slowdown(spec_.heuristic_label()), [&] { reference.run(); });
   timings["build_cpu_samples"] = batches.samples;
+  timings["build_reference_samples"] = batches.reference;
   timings["build_cpu_builds"] = batches.runs;
   timings["build_cpu_seconds"] = batches.median();
 

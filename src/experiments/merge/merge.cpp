@@ -8,6 +8,7 @@
 #include "catalog.h"
 #include "common/hash.h"
 #include "experiments/merge/set_operation.h"
+#include "experiments/reference_build.h"
 #include "solid_pairs.h"
 
 namespace bsp::experiments {
@@ -22,6 +23,8 @@ constexpr std::uint64_t kDefaultPoints = 10000;
 constexpr TimingField kTimings[] = {
     {"merge_cpu_samples", TimingRole::GatedSamples,
      "thread CPU seconds per merge (merge and reduce), one per timed batch of at least 2 ms (experiments/timing.h)"},
+    {"merge_reference_samples", TimingRole::ReferenceSamples,
+     "thread CPU seconds per Embree BVH build of the same input, one batch before each timed batch: the gate divides each sample by it (experiments/reference_build.h)"},
     {"merge_cpu_seconds", TimingRole::SamplesMedian, "the median of merge_cpu_samples"},
     {"merge_cpu_merges", TimingRole::SampleCount, "merges timed for the samples: depends on the machine's speed"},
     {"merge_seconds", TimingRole::Wall, "wall time of the first merge (the result that is checked), reduction excluded"},
@@ -251,9 +254,13 @@ nlohmann::json MergeJob::run(const RunContext& context) const {
   json timings = json::object();
   double check_start = 0;
   const SetOperationRun run = run_set_operation(a, b, spec_.op, *splitter, settings, [&](const SolidOperands& o) {
+    std::vector<Polygon> both = a.polygons;
+    both.insert(both.end(), b.polygons.begin(), b.polygons.end());
+    const ReferenceBuild reference(both);
     const TimedBatches batches = time_batches([&] { merge(o.a.solid, o.b.solid, spec_.op); },
-                                              context.slowdown(spec_.heuristic.label));
+                                              context.slowdown(spec_.heuristic.label), [&] { reference.run(); });
     timings["merge_cpu_samples"] = batches.samples;
+    timings["merge_reference_samples"] = batches.reference;
     timings["merge_cpu_merges"] = batches.runs;
     timings["merge_cpu_seconds"] = batches.median();
     check_start = wall_seconds();

@@ -8,6 +8,7 @@
 #include "common/cpu_time.h"
 #include "common/hash.h"
 #include "experiments/occlude/occlusion_run.h"
+#include "experiments/reference_build.h"
 #include "metrics/traversal_cost.h"
 #include "tree/build.h"
 #include "validate/tree_invariants.h"
@@ -23,6 +24,8 @@ constexpr std::uint32_t kDefaultViews = 4;
 constexpr TimingField kTimings[] = {
     {"occlude_cpu_samples", TimingRole::GatedSamples,
      "thread CPU seconds per culling of every view, one per timed batch of at least 2 ms"},
+    {"occlude_reference_samples", TimingRole::ReferenceSamples,
+     "thread CPU seconds per Embree BVH build of the same input, one batch before each timed batch: the gate divides each sample by it (experiments/reference_build.h)"},
     {"occlude_cpu_seconds", TimingRole::SamplesMedian, "the median of occlude_cpu_samples, divided by the views"},
     {"occlude_cpu_runs", TimingRole::SampleCount, "cullings of every view timed: depends on the machine's speed"},
     {"occluder_setup_cpu_seconds", TimingRole::Cpu, "thread CPU seconds of the subtree boxes (once per tree)"},
@@ -120,13 +123,15 @@ nlohmann::json OccludeJob::run(const RunContext& context) const {
   const std::vector<Frustum> views = metric_views(tree.bounds, scene_.views);
   json validation{{"violations", 0}, {"missed_fragments", 0}, {"rays", 0}};
   json metrics = cull_views(tree, occluder, views, validation);
+  const ReferenceBuild reference(scene.polygons);
   const TimedBatches batches = time_batches(
       [&] {
         for (const Frustum& v : views) occluder.visible(v);
       },
-      context.slowdown(scene_.heuristic->label));
+      context.slowdown(scene_.heuristic->label), [&] { reference.run(); });
   const double views_count = std::max<double>(1, static_cast<double>(views.size()));
   json timings{{"occlude_cpu_samples", batches.samples},
+               {"occlude_reference_samples", batches.reference},
                {"occlude_cpu_seconds", batches.median() / views_count},
                {"occlude_cpu_runs", batches.runs},
                {"occluder_setup_cpu_seconds", setup_seconds}};
