@@ -9,9 +9,11 @@
 //       also speedup (the 1-thread median build time / this one's)
 //   scaling/traverse/SCENE/n:N/HEURISTIC  back-to-front from the 8 metric views; items = fragments
 //       emitted; counters: sort_seconds (std::sort of as many (depth, id) pairs as one view emits),
-//       traverse_vs_sort (median time per view / that)
-// Both ratios come from medians measured in the same benchmark, minutes apart at most, so machine
-// load cancels as far as it can.
+//       traverse_vs_sort (median time per view / that), traverse_vs_embree_rays (the median over
+//       runs of each run's time per view / Embree's 64 x 64 primary rays per view timed right after
+//       it: a paired reference of the same character, pointer-chasing traversal of a hierarchy)
+// The ratios to medians come from the same benchmark, minutes apart at most; the paired ratio
+// also cancels a machine whose speed for such code drifts within a run (gate-timing.md).
 //
 // random-triangles can be chosen too (--bsp_scenes=random-triangles): its `size` then shrinks as
 // 0.1 * (1000 / N)^(1/3), the generator's default at N = 10^3, so each triangle overlaps about as
@@ -42,6 +44,9 @@ namespace {
 constexpr double kDefaultSize = 0.1;  // random-triangles' default `size`
 constexpr double kDefaultN = 1000;    // the N at which it applies unchanged
 constexpr int kReferenceRepeats = 5;  // timed runs of each reference; their median is used
+// Primary rays per view side for the traversal's paired reference: 64^2 rays per view take about a
+// tenth of a back-to-front traversal of 10^5 fragments, long enough to time on its own.
+constexpr int kRayGrid = 64;
 // Builds of a million polygons take seconds, so Google Benchmark's minimum time would allow one
 // run, and a median of one is no median: from this size on, builds run a fixed number of times.
 constexpr std::uint64_t kLargeN = 1000000;
@@ -113,18 +118,23 @@ void bm_build_vs_embree(benchmark::State& state, const Scene* s, std::string h, 
 void bm_traverse_vs_sort(benchmark::State& state, const Scene* s, std::string h) {
   const Tree& t = tree(*s, h, kSeed);
   const auto views = metric_views(t.bounds, kViews);
+  EmbreePrimaryRays rays(s->polygons, views, kRayGrid);
   std::int64_t emitted = 0;
-  std::vector<double> per_view;
+  std::vector<double> per_view, vs_rays;
   for (auto _ : state) {
     const auto start = Clock::now();
     for (const auto& v : views) emitted += traverse(t, v.eye, Order::BackToFront, [](std::uint32_t) {}).fragments_emitted;
     per_view.push_back(seconds_since(start) / static_cast<double>(views.size()));
+    state.PauseTiming();
+    vs_rays.push_back(per_view.back() / rays.seconds_per_view());
+    state.ResumeTiming();
   }
   state.SetItemsProcessed(emitted);
   set_tree_counters(state);
   const double sort = depth_sort_seconds(t.fragments.size(), kReferenceRepeats);
   state.counters["sort_seconds"] = sort;
   state.counters["traverse_vs_sort"] = median(per_view) / sort;
+  state.counters["traverse_vs_embree_rays"] = median(vs_rays);
 }
 
 void register_all(const Selection& sel) {

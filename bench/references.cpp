@@ -79,40 +79,61 @@ double embree_bvh_build_seconds(std::span<const Polygon> polygons, int threads, 
   return median(times);
 }
 
-double embree_primary_rays_seconds(std::span<const Polygon> polygons, std::span<const Frustum> views, int grid,
-                                   int repeats) {
-  const Triangles t = triangulate(polygons);
-  RTCDevice device = rtcNewDevice("threads=1");
-  if (!device) throw std::runtime_error("Embree: cannot create a device");
-  RTCScene scene = committed_scene(device, t);
+struct EmbreePrimaryRays::Impl {
+  Triangles triangles;
+  std::vector<Frustum> views;
+  int grid = 0;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  unsigned hits = 0;  // keeps the casts observable
+};
+
+EmbreePrimaryRays::EmbreePrimaryRays(std::span<const Polygon> polygons, std::span<const Frustum> views, int grid)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->triangles = triangulate(polygons);
+  impl_->views.assign(views.begin(), views.end());
+  impl_->grid = grid;
+  impl_->device = rtcNewDevice("threads=1");
+  if (!impl_->device) throw std::runtime_error("Embree: cannot create a device");
+  impl_->scene = committed_scene(impl_->device, impl_->triangles);
+}
+
+EmbreePrimaryRays::~EmbreePrimaryRays() {
+  rtcReleaseScene(impl_->scene);
+  rtcReleaseDevice(impl_->device);
+}
+
+double EmbreePrimaryRays::seconds_per_view() {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  std::vector<double> times;
-  unsigned hits = 0;
-  for (int r = 0; r < repeats; ++r) {
-    const auto start = Clock::now();
-    for (const Frustum& view : views) {
-      const auto c = view.corners();
-      for (int i = 0; i < grid; ++i)
-        for (int j = 0; j < grid; ++j) {
-          const Vec3 d = c[0] + (c[2] - c[0]) * ((i + 0.5) / grid) + (c[1] - c[0]) * ((j + 0.5) / grid) - view.eye;
-          RTCRayHit rh{};
-          rh.ray.org_x = static_cast<float>(view.eye.x), rh.ray.org_y = static_cast<float>(view.eye.y);
-          rh.ray.org_z = static_cast<float>(view.eye.z);
-          rh.ray.dir_x = static_cast<float>(d.x), rh.ray.dir_y = static_cast<float>(d.y), rh.ray.dir_z = static_cast<float>(d.z);
-          rh.ray.tnear = 0.0f;
-          rh.ray.tfar = std::numeric_limits<float>::infinity();
-          rh.ray.mask = ~0u;
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rtcIntersect1(scene, &context, &rh);
-          hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        }
-    }
-    times.push_back(seconds_since(start) / static_cast<double>(std::max<std::size_t>(views.size(), 1)));
+  const int grid = impl_->grid;
+  const auto start = Clock::now();
+  for (const Frustum& view : impl_->views) {
+    const auto c = view.corners();
+    for (int i = 0; i < grid; ++i)
+      for (int j = 0; j < grid; ++j) {
+        const Vec3 d = c[0] + (c[2] - c[0]) * ((i + 0.5) / grid) + (c[1] - c[0]) * ((j + 0.5) / grid) - view.eye;
+        RTCRayHit rh{};
+        rh.ray.org_x = static_cast<float>(view.eye.x), rh.ray.org_y = static_cast<float>(view.eye.y);
+        rh.ray.org_z = static_cast<float>(view.eye.z);
+        rh.ray.dir_x = static_cast<float>(d.x), rh.ray.dir_y = static_cast<float>(d.y), rh.ray.dir_z = static_cast<float>(d.z);
+        rh.ray.tnear = 0.0f;
+        rh.ray.tfar = std::numeric_limits<float>::infinity();
+        rh.ray.mask = ~0u;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(impl_->scene, &context, &rh);
+        impl_->hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      }
   }
-  rtcReleaseScene(scene);
-  rtcReleaseDevice(device);
-  benchmark::DoNotOptimize(hits);
+  benchmark::DoNotOptimize(impl_->hits);
+  return seconds_since(start) / static_cast<double>(std::max<std::size_t>(impl_->views.size(), 1));
+}
+
+double embree_primary_rays_seconds(std::span<const Polygon> polygons, std::span<const Frustum> views, int grid,
+                                   int repeats) {
+  EmbreePrimaryRays rays(polygons, views, grid);
+  std::vector<double> times;
+  for (int r = 0; r < repeats; ++r) times.push_back(rays.seconds_per_view());
   return median(times);
 }
 

@@ -11,6 +11,7 @@
 //    plain painter's-algorithm depth sort, which a back-to-front traversal replaces.
 // Each returns the median of `repeats` timed runs, in seconds.
 #include <cstddef>
+#include <memory>
 #include <span>
 
 #include "geometry/polygon.h"
@@ -23,5 +24,21 @@ double depth_sort_seconds(std::size_t pairs, int repeats);
 // Seconds per view of a grid x grid primary-ray image, on one thread: the median over `repeats`.
 double embree_primary_rays_seconds(std::span<const Polygon> polygons, std::span<const Frustum> views, int grid,
                                    int repeats);
+
+// The same primary rays, the BVH built once, for a benchmark that times them beside each of its own
+// runs (a reference paired run by run, as the sweep's are: experiments/timing.h).
+class EmbreePrimaryRays {
+ public:
+  EmbreePrimaryRays(std::span<const Polygon> polygons, std::span<const Frustum> views, int grid);
+  ~EmbreePrimaryRays();
+  EmbreePrimaryRays(const EmbreePrimaryRays&) = delete;
+  EmbreePrimaryRays& operator=(const EmbreePrimaryRays&) = delete;
+  // Wall seconds per view of one pass over every view.
+  double seconds_per_view();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace bsp::bench

@@ -1138,7 +1138,8 @@ TEST(SweepReport, ReadingRejectsOtherSchemasVersionsAndDamagedRecords) {
 
 namespace {
 
-nlohmann::json bench_output(double build_vs_embree, double speedup, double fragments, double peak = 1.9) {
+nlohmann::json bench_output(double build_vs_embree, double speedup, double fragments, double peak = 1.9,
+                            double vs_rays = 3.6, double vs_sort = 0.3) {
   nlohmann::json doc;
   doc["context"] = {{"date", "today"}};
   doc["benchmarks"] = nlohmann::json::array();
@@ -1151,7 +1152,8 @@ nlohmann::json bench_output(double build_vs_embree, double speedup, double fragm
                                {"bytes_per_fragment", 211.0}});
   doc["benchmarks"].push_back({{"name", "scaling/traverse/random-disjoint/n:100000/crystal/real_time"},
                                {"run_type", "iteration"},
-                               {"traverse_vs_sort", 0.3},
+                               {"traverse_vs_embree_rays", vs_rays},
+                               {"traverse_vs_sort", vs_sort},
                                {"fragments", fragments}});
   return doc;
 }
@@ -1166,8 +1168,21 @@ TEST(BenchGate, IdenticalOutputPassesAndComparesEveryJudgedCounter) {
   const auto r = bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.8, 1e5), {});
   EXPECT_FALSE(r.failed());
   EXPECT_EQ(r.runs_compared, 2u);
-  // build_vs_embree, speedup, build_peak_vs_tree, fragments, bytes; traverse_vs_sort, fragments
-  EXPECT_EQ(r.values_compared, 7u);
+  // build_vs_embree, speedup, build_peak_vs_tree, fragments, bytes; traverse_vs_embree_rays,
+  // traverse_vs_sort, fragments
+  EXPECT_EQ(r.values_compared, 8u);
+}
+
+// The traversal is gated against its paired Embree rays; a move against std::sort alone (which
+// does not slow with the machine as a traversal does) is listed, not failed.
+TEST(BenchGate, TraversalFailsAgainstItsPairedRaysAndIsNotedAgainstTheSort) {
+  const auto base = bench_output(8, 1.8, 1e5);
+  const auto slower = bsp::gate::compare_benchmarks(base, bench_output(8, 1.8, 1e5, 1.9, 5.5, 0.45), {});
+  EXPECT_TRUE(slower.failed());
+  EXPECT_TRUE(any_change(slower, "worse", "traverse_vs_embree_rays"));
+  const auto drift = bsp::gate::compare_benchmarks(base, bench_output(8, 1.8, 1e5, 1.9, 3.7, 0.55), {});
+  EXPECT_FALSE(drift.failed());
+  EXPECT_TRUE(any_change(drift, "worse", "traverse_vs_sort"));
 }
 
 TEST(BenchGate, RatioWorseByTheToleranceFailsAndASmallerDriftPasses) {

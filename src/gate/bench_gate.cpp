@@ -24,9 +24,14 @@ struct Ratio {
 // machine the second core is not ours, and a lost core shows in build_vs_embree at threads:2
 // anyway, since Embree's reference runs on as many threads and shares the loss. The build's peak
 // resident memory over the tree's bytes is gated with the same tolerance: it moves little between
-// runs, but page-granular accounting makes it less than exact.
+// runs, but page-granular accounting makes it less than exact. The traversal is gated against
+// Embree's primary rays timed after each of its runs, not against std::sort: on a virtual machine
+// the traversal's speed drifts by up to 2x between runs while a sort's barely moves, and Embree's
+// traversal of its BVH drifts with ours (docs/results/gate-timing.md); traverse_vs_sort, the
+// figure a renderer choosing between a BSP and a depth sort wants, is listed when it moves.
 constexpr Ratio kRatios[] = {{"build_vs_embree", Better::Lower, true},
-                             {"traverse_vs_sort", Better::Lower, true},
+                             {"traverse_vs_embree_rays", Better::Lower, true},
+                             {"traverse_vs_sort", Better::Lower, false},
                              {"build_peak_vs_tree", Better::Lower, true},
                              {"speedup", Better::Higher, false}};
 // Deterministic counters of the tree.
