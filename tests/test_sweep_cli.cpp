@@ -151,6 +151,25 @@ TEST_F(SweepCli, MergeRunCommandRepeatsTheRun) {
   EXPECT_EQ(checked, 4u);  // 2 heuristics x 2 operations
 }
 
+// A drawing run's command prints the run's metrics, all of them equal, for a 3D scene, a 2D one
+// (whose query costs are undefined, so neither prints them) and an incremental build.
+TEST_F(SweepCli, DrawRunCommandRepeatsTheRunIn3DIn2DAndIncrementally) {
+  std::ofstream(dir_ / "draw.json") << R"({"name": "draw", "blocks": [
+      {"scenes": ["city", "random-segments"], "heuristics": ["weighted"], "sizes": [100], "seeds": [2]},
+      {"scenes": ["city"], "incremental": true, "sizes": [100], "seeds": [2]}]})";
+  ASSERT_EQ(bspbench("sweep --suite draw.json --out draw-report.json --journal-dir j"), 0) << err_;
+  const auto report = read_report((dir_ / "draw-report.json").string());
+  ASSERT_EQ(report["runs"].size(), 3u);
+  for (const auto& run : report["runs"]) {
+    const std::string command = run["id"]["command"];
+    ASSERT_EQ(command.rfind("bspbench build ", 0), 0u) << command;
+    ASSERT_EQ(bspbench(command.substr(9) + " --json"), 0) << command << "\n" << err_;
+    const auto out = nlohmann::json::parse(out_);
+    for (const auto& [k, v] : run["metrics"].items()) EXPECT_EQ(out[k], v) << command << ": " << k;
+    EXPECT_EQ(out.contains("e_line"), run["metrics"].contains("e_line")) << command;
+  }
+}
+
 TEST_F(SweepCli, RegressExitsZeroOnIdenticalOneOnChangedAndTwoOnBadInput) {
   const fs::path base = small_report();
   EXPECT_EQ(bspbench("regress --baseline " + base.string() + " --current " + base.string()), 0) << out_ << err_;

@@ -6,7 +6,7 @@
 #include "cli/commands.h"
 #include "cli/metrics_args.h"
 #include "cli/run_args.h"
-#include "metrics/tree_metrics.h"
+#include "experiments/draw/draw.h"
 
 namespace bsp::cli {
 
@@ -21,7 +21,7 @@ int run(Args& args) {
   args.finish();
   const Tree tree = build_from_args(scene, t);
   nlohmann::json out = describe_run(scene, t);
-  out.update(to_json(measure_tree(tree, settings)));
+  out.update(to_json(experiments::measure_drawing(tree, scene.polygons, settings)));
   if (json) {
     std::cout << out.dump() << "\n";
   } else {

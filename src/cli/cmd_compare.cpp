@@ -19,6 +19,7 @@
 #include "cli/metrics_args.h"
 #include "cli/run_args.h"
 #include "common/errors.h"
+#include "experiments/draw/draw.h"
 #include "io/mesh_reader.h"
 #include "metrics/statistics.h"
 #include "metrics/tree_metrics.h"
@@ -117,7 +118,8 @@ Run run_once(const CompareSpec& s, const Scene& scene, const std::string& heuris
   const Tree tree = build_from_args(scene, t);
   MetricsSettings m = s.metrics;
   m.seed = seed;
-  return {to_json(measure_tree(tree, m)), validate_tree(tree, s.validation), check_ray_shooting(tree, s.validation)};
+  return {to_json(experiments::measure_drawing(tree, scene.polygons, m)), validate_tree(tree, s.validation),
+          check_ray_shooting(tree, s.validation)};
 }
 
 // The checks summed over the runs; `failures` counts order violations and ray-shooting mismatches.

@@ -7,6 +7,7 @@
 
 #include "catalog.h"
 #include "common/errors.h"
+#include "experiments/draw/draw.h"
 #include "io/mesh_reader.h"
 #include "mesh_scenes.h"
 #include "split/registry.h"
@@ -110,9 +111,9 @@ Scene scene_or_file(const std::string& spec, const std::vector<std::string>& par
 }
 
 Tree build_from_args(const Scene& scene, const TreeArgs& t) {
-  if (t.options.incremental) return build_incremental_tree(scene.polygons, t.options);
-  auto splitter = make_splitter(t.heuristic, t.params, t.seed);
-  return build_tree(scene.polygons, *splitter, t.options);
+  std::unique_ptr<Splitter> splitter;
+  if (!t.options.incremental) splitter = make_splitter(t.heuristic, t.params, t.seed);
+  return experiments::build_drawing(scene.polygons, splitter.get(), t.options);
 }
 
 nlohmann::json describe_run(const Scene& scene, const TreeArgs& t) {

@@ -309,12 +309,20 @@ Tree build_once(const SceneRun& s, const Scene& scene) {
   if (s.incremental()) {
     options.order = InsertOrder::Shuffled;
     options.order_seed = insertion_order_seed(s.seed);
-    return build_incremental_tree(scene.polygons, options);
+    return build_drawing(scene.polygons, nullptr, options);
   }
-  return build_tree(scene.polygons, *s.heuristic->splitter(s.seed), options);
+  return build_drawing(scene.polygons, s.heuristic->splitter(s.seed).get(), options);
 }
 
 }  // namespace
+
+Tree build_drawing(std::span<const Polygon> polygons, Splitter* splitter, const BuildOptions& options) {
+  return splitter ? build_tree(polygons, *splitter, options) : build_incremental_tree(polygons, options);
+}
+
+TreeMetrics measure_drawing(const Tree& tree, std::span<const Polygon> scene, const MetricsSettings& settings) {
+  return all_segments(scene) ? measure_tree(tree) : measure_tree(tree, settings);
+}
 
 Jobs DrawBlock::expand() const {
   Jobs out;
@@ -356,11 +364,9 @@ nlohmann::json DrawJob::run(const RunContext& context) const {
 
   MetricsSettings metric_settings;  // the defaults, with the job's seed for the metric rays
   metric_settings.seed = spec_.seed;
-  // The query costs are defined for 3D scenes (cells, frustums and rays in space); a 2D tree gets
-  // its size and shape.
   const bool flat = all_segments(scene.polygons);
   const double cpu = thread_cpu_seconds();
-  json metrics = to_json(flat ? measure_tree(tree) : measure_tree(tree, metric_settings));
+  json metrics = to_json(measure_drawing(tree, scene.polygons, metric_settings));
   timings["metrics_cpu_seconds"] = thread_cpu_seconds() - cpu;
   split_timings(metrics, timings, "", kTimings);
   json id = identity();

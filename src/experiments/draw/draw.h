@@ -18,9 +18,20 @@
 #include "common/params.h"
 #include "experiments/kind.h"
 #include "experiments/scene_run.h"
+#include "metrics/tree_metrics.h"
+#include "split/splitter.h"
+#include "tree/build.h"
 #include "tree/tree.h"
 
 namespace bsp::experiments {
+
+// A drawing run's tree, as a drawing job builds it and as `bspbench build` (and every command that
+// builds one tree) does: the splitter's build, or Thibault–Naylor insertion in the order `options`
+// give when there is no splitter.
+Tree build_drawing(std::span<const Polygon> polygons, Splitter* splitter, const BuildOptions& options);
+// A drawing run's metrics: size and shape, and for a 3D scene the query costs measured with
+// `settings`. A flat scene (2D segments) has no cells, frustums or rays in space to cost.
+TreeMetrics measure_drawing(const Tree& tree, std::span<const Polygon> scene, const MetricsSettings& settings);
 
 // How much ray-cast validation each run gets; bigger scenes get fewer views so a suite stays
 // within its time budget.
