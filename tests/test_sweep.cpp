@@ -1139,13 +1139,16 @@ TEST(SweepReport, ReadingRejectsOtherSchemasVersionsAndDamagedRecords) {
 namespace {
 
 nlohmann::json bench_output(double build_vs_embree, double speedup, double fragments, double peak = 1.9,
-                            double vs_rays = 3.6, double vs_sort = 0.3) {
+                            double vs_rays = 3.6, double vs_sort = 0.3, double machinery = -1) {
+  if (machinery < 0) machinery = 0.6 * build_vs_embree;  // the build's bill in the proportion of its whole
   nlohmann::json doc;
   doc["context"] = {{"date", "today"}};
   doc["benchmarks"] = nlohmann::json::array();
   doc["benchmarks"].push_back({{"name", "scaling/build/random-disjoint/n:100000/crystal/threads:2/real_time"},
                                {"run_type", "iteration"},
                                {"build_vs_embree", build_vs_embree},
+                               {"choose_vs_embree", build_vs_embree - machinery},
+                               {"machinery_vs_embree", machinery},
                                {"speedup", speedup},
                                {"build_peak_vs_tree", peak},
                                {"fragments", fragments},
@@ -1168,9 +1171,19 @@ TEST(BenchGate, IdenticalOutputPassesAndComparesEveryJudgedCounter) {
   const auto r = bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(8, 1.8, 1e5), {});
   EXPECT_FALSE(r.failed());
   EXPECT_EQ(r.runs_compared, 2u);
-  // build_vs_embree, speedup, build_peak_vs_tree, fragments, bytes; traverse_vs_embree_rays,
-  // traverse_vs_sort, fragments
-  EXPECT_EQ(r.values_compared, 8u);
+  // build_vs_embree, choose_vs_embree, machinery_vs_embree, speedup, build_peak_vs_tree, fragments,
+  // bytes; traverse_vs_embree_rays, traverse_vs_sort, fragments
+  EXPECT_EQ(r.values_compared, 10u);
+}
+
+// The build's bill is gated part by part: the core's own work slower by half fails by name even
+// where the whole build moved less than the tolerance.
+TEST(BenchGate, SlowerMachineryFailsByNameWhateverTheHeuristicsShare) {
+  // 8 = 3.2 choosing + 4.8 machinery, then 3.2 + 7.5 = 10.7 (x1.34 in all, x1.56 in the machinery)
+  const auto r = bsp::gate::compare_benchmarks(bench_output(8, 1.8, 1e5), bench_output(10.7, 1.8, 1e5, 1.9, 3.6, 0.3, 7.5), {});
+  EXPECT_TRUE(r.failed());
+  EXPECT_TRUE(any_change(r, "worse", "machinery_vs_embree"));
+  EXPECT_FALSE(any_change(r, "worse", "build_vs_embree"));
 }
 
 // The traversal is gated against its paired Embree rays; a move against std::sort alone (which

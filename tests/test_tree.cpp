@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <numeric>
 
 #include "catalog.h"
@@ -246,4 +247,42 @@ TEST(CheckScene, RejectsTextureCoordinatesBeyondTheFloatRange) {
   EXPECT_NO_THROW(check_scene(scene, "test"));
   scene.polygons[0].verts[1].u = 1e300;
   EXPECT_THROW(check_scene(scene, "test"), InputError);
+}
+
+namespace {
+
+// A splitter that spends at least `spin` of wall time in every choose before asking `inner`.
+class SlowChooser final : public Splitter {
+ public:
+  SlowChooser(std::unique_ptr<Splitter> inner, std::chrono::microseconds spin) : inner_(std::move(inner)), spin_(spin) {}
+  SplitChoice choose(const SplitContext& ctx) override {
+    ++calls;
+    const auto until = std::chrono::steady_clock::now() + spin_;
+    while (std::chrono::steady_clock::now() < until) {
+    }
+    return inner_->choose(ctx);
+  }
+  std::unique_ptr<Splitter> clone() const override { return std::make_unique<SlowChooser>(inner_->clone(), spin_); }
+  std::uint64_t calls = 0;
+
+ private:
+  std::unique_ptr<Splitter> inner_;
+  std::chrono::microseconds spin_;
+};
+
+}  // namespace
+
+// The build's bill (BuildStats): time inside choose is the heuristic's, the rest the machinery's,
+// and on one thread the two make up the build. A build on one thread here: 20 squares are far
+// below BuildOptions::min_task_fragments.
+TEST(BuildBill, TimeInsideChooseIsBilledToChoosingAndTheRestToTheMachinery) {
+  SlowChooser slow(make_splitter("first", {}, 1), std::chrono::microseconds(500));
+  const Tree tree = build_tree(stacked_squares(20), slow);
+  ASSERT_EQ(slow.calls, 20u);  // a chain: one choice per square
+  EXPECT_GE(tree.stats.choose_seconds, 20 * 500e-6);
+  EXPECT_GT(tree.stats.machinery_seconds, 0.0);
+  EXPECT_LT(tree.stats.machinery_seconds, tree.stats.choose_seconds);
+  EXPECT_LE(tree.stats.choose_seconds + tree.stats.machinery_seconds, tree.stats.build_seconds * (1 + 1e-9));
+  const Tree inserted = build_incremental_tree(stacked_squares(20), {});
+  EXPECT_EQ(inserted.stats.choose_seconds + inserted.stats.machinery_seconds, 0.0);
 }

@@ -2,7 +2,8 @@
 // The regression gate for the scaling benchmark (bench/bench_scaling.cpp): compares two Google
 // Benchmark JSON outputs (--benchmark_out=FILE --benchmark_out_format=json) benchmark by benchmark,
 // matched by name. Only what the benchmark makes comparable across machines is judged:
-//  - ratios to an in-run reference (lower is better): build_vs_embree, a median over the
+//  - ratios to an in-run reference (lower is better): build_vs_embree and its two parts,
+//    choose_vs_embree and machinery_vs_embree (BuildStats), each a median over the
 //    benchmark's runs divided by a median of its reference measured seconds apart in the same
 //    process, and traverse_vs_embree_rays, the median of each run's ratio to the reference timed
 //    right after it, so the machine's speed cancels. A ratio FAILS when it is worse than the

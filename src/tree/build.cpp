@@ -15,6 +15,10 @@ namespace bsp {
 
 namespace {
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
 // One pending subtree: its fragments and where to hang the node made from them.
 struct WorkItem {
   std::vector<std::uint32_t> ids;
@@ -56,6 +60,7 @@ class RecursiveBuilder {
 
   void run(WorkItem first) {
     if (first.ids.empty()) return;
+    const auto start = Clock::now();
     std::vector<WorkItem> stack;
     stack.push_back(std::move(first));
     while (!stack.empty()) {
@@ -69,6 +74,9 @@ class RecursiveBuilder {
         process(std::move(item), stack);
       }
     }
+    // What the builder spent outside choose and outside the tasks it ran in place (each bills its own).
+    tree_.stats.machinery_seconds += seconds_since(start) - choose_seconds_ - inline_task_seconds_;
+    tree_.stats.choose_seconds += choose_seconds_;
   }
 
  private:
@@ -175,8 +183,11 @@ class RecursiveBuilder {
     // by value, and the options by a pointer into build_tree's caller, which outlives every task.
     Task* t = &task;
     const BuildOptions* options = &options_;
+    // The runtime may run the task here, at once (always on one thread): that is the task's time.
+    const auto start = Clock::now();
 #pragma omp task default(none) firstprivate(t, options)
     RecursiveBuilder(t->tree, *t->splitter, *options, std::move(t->prefix), nullptr).run(std::move(t->root));
+    inline_task_seconds_ += seconds_since(start);
   }
 
   // Handed-off fragments leave space the main builder, which makes only the top of the tree, would
@@ -193,7 +204,9 @@ class RecursiveBuilder {
   std::pair<std::uint32_t, bool> choose_plane(const WorkItem& item) {
     if (splitter_.needs_cell()) collect_cell_planes(item);
     const SplitContext ctx{item.ids, store_, tree_.planes, tree_.tol, tree_.bounds, cell_planes_, item.depth, item.key};
+    const auto start = Clock::now();
     const SplitChoice choice = splitter_.choose(ctx);
+    choose_seconds_ += seconds_since(start);
     switch (choice.kind) {
       case SplitChoice::Kind::Fragment: return {store_.plane(choice.fragment), true};
       case SplitChoice::Kind::Free: return {tree_.planes.add(snap(choice.plane)), false};
@@ -309,6 +322,8 @@ class RecursiveBuilder {
   std::vector<std::uint32_t> cell_planes_;
   std::vector<std::uint32_t> parent_;  // build-time side data, parallel to tree_.nodes
   std::vector<bool> parent_front_;
+  double choose_seconds_ = 0.0;       // this builder's time inside Splitter::choose
+  double inline_task_seconds_ = 0.0;  // its time in task statements, which may run the task in place
 };
 
 // The main pool's index of every plane of a finished task's pool, by pair: the planes the task was
@@ -403,6 +418,8 @@ class Assembler {
     to.dropped_area += from.dropped_area;
     to.fallbacks += from.fallbacks;
     to.mixed_leaves += from.mixed_leaves;
+    to.choose_seconds += from.choose_seconds;
+    to.machinery_seconds += from.machinery_seconds;
     task = Task{};
   }
 
@@ -447,7 +464,10 @@ void build_recursive(TreeDraft& tree, Splitter& splitter, std::vector<std::uint3
 #pragma omp single
   RecursiveBuilder(tree, splitter, options, {}, &tasks, min_task, max_task).run(WorkItem{std::move(ids)});
   tree.stats.tasks = tasks.size();
-  if (!tasks.empty()) Assembler(tree, tasks).run();
+  if (tasks.empty()) return;
+  const auto start = Clock::now();
+  Assembler(tree, tasks).run();
+  tree.stats.machinery_seconds += seconds_since(start);
 }
 
 }  // namespace
@@ -455,16 +475,24 @@ void build_recursive(TreeDraft& tree, Splitter& splitter, std::vector<std::uint3
 Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options) {
   if (options.incremental && options.shape == Shape::Leafy)
     throw std::invalid_argument("a leafy tree is built recursively, not incrementally");
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   TreeDraft draft;
   draft.shape = options.shape;
   std::vector<std::uint32_t> ids = load_input(input, draft);
-  if (options.incremental)
+  if (options.incremental) {
     build_incremental(draft, std::move(ids), splitter, options);
-  else
-    build_recursive(draft, splitter, std::move(ids), options);
+    Tree tree = freeze(std::move(draft));
+    tree.stats.build_seconds = seconds_since(start);
+    return tree;
+  }
+  const auto builders = Clock::now();
+  build_recursive(draft, splitter, std::move(ids), options);
+  // The builders and the layout have billed their own time; the main thread's waits for tasks are
+  // not work. What remains is loading and freezing.
+  const double building = seconds_since(builders);
   Tree tree = freeze(std::move(draft));
-  tree.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  tree.stats.build_seconds = seconds_since(start);
+  tree.stats.machinery_seconds += tree.stats.build_seconds - building;
   return tree;
 }
 

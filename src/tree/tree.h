@@ -68,6 +68,13 @@ struct BuildStats {
   std::uint64_t mixed_leaves = 0;     // leafy: convex leaves of several groups no plane could part
   std::uint64_t tasks = 0;            // subtrees built as separate tasks (BuildOptions::task_share)
   double build_seconds = 0.0;
+  // The bill of a recursive build, wall seconds summed over the threads that did each part (so on
+  // two threads the sum can reach twice build_seconds): choosing planes (inside Splitter::choose:
+  // the heuristic's own work) and the build's own work (loading the input; partitioning, splitting
+  // and emitting nodes in the builders; laying out the tasks' subtrees and freezing the tree).
+  // Timings: they depend on the machine, never on the tree. Zero for an incremental build.
+  double choose_seconds = 0.0;
+  double machinery_seconds = 0.0;
 };
 
 // Built in scratch memory (tree/draft.h) and frozen; never modified afterwards. Traversal reads
