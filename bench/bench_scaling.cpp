@@ -11,7 +11,9 @@
 //       (BuildStats): at T = 1 choose_vs_embree (time inside the heuristic's choose) and
 //       machinery_vs_embree (the build's own work: loading, partitioning, splitting, node emission,
 //       layout, freezing), which add up to build_vs_embree; at T = 2 the same two as seconds of
-//       thread time summed over the threads (choose_thread_seconds, machinery_thread_seconds).
+//       thread time summed over the threads (choose_thread_seconds, machinery_thread_seconds);
+//       at T = 1 visit_nanoseconds, the build time over the sum of the fragments' depths: the cost
+//       of one fragment passing one level, which a build whose cost is its depth keeps flat in N.
 //       Embree builds once after each build, untimed by the benchmark, and every ratio is the
 //       median of the runs' ratios to it: a reference paired run by run, as the sweep's are
 //   scaling/traverse/SCENE/n:N/HEURISTIC  back-to-front from the 8 metric views; items = fragments
@@ -136,6 +138,10 @@ void bm_build_vs_embree(benchmark::State& state, const Scene* s, std::string h, 
   set_tree_counters(state);
   state.counters["embree_bvh_seconds"] = embree;
   state.counters["build_vs_embree"] = median(vs_embree);
+  // A fragment is visited once per level it passes on its way down: the sum of the stored
+  // fragments' depths counts the visits (a split fragment's parts each count from the root).
+  const double visits = state.counters["fragments"].value * state.counters["fragment_weighted_depth"].value;
+  if (threads == 1 && visits > 0) state.counters["visit_nanoseconds"] = build / visits * 1e9;
   if (threads == 1) one_thread_medians()[tail] = build;
   else if (auto it = one_thread_medians().find(tail); it != one_thread_medians().end())
     state.counters["speedup"] = it->second / build;
