@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench_common.h"
+#include "experiments/reference_build.h"
 #include "metrics/statistics.h"
 
 namespace bsp::bench {
@@ -57,25 +58,16 @@ RTCScene committed_scene(RTCDevice device, const Triangles& t) {
   return scene;
 }
 
-double one_bvh_build(RTCDevice device, const Triangles& t) {
-  const auto start = Clock::now();
-  RTCScene scene = committed_scene(device, t);
-  const double seconds = seconds_since(start);
-  rtcReleaseScene(scene);
-  if (rtcGetDeviceError(device) != RTC_ERROR_NONE) throw std::runtime_error("Embree failed to build the reference BVH");
-  return seconds;
-}
-
 }  // namespace
 
 double embree_bvh_build_seconds(std::span<const Polygon> polygons, int threads, int repeats) {
-  const Triangles t = triangulate(polygons);
-  const std::string config = "threads=" + std::to_string(threads);
-  RTCDevice device = rtcNewDevice(config.c_str());
-  if (!device) throw std::runtime_error("Embree: cannot create a device");
+  const experiments::ReferenceBuild reference(polygons, threads);
   std::vector<double> times;
-  for (int i = 0; i < repeats; ++i) times.push_back(one_bvh_build(device, t));
-  rtcReleaseDevice(device);
+  for (int i = 0; i < repeats; ++i) {
+    const auto start = Clock::now();
+    reference.run();
+    times.push_back(seconds_since(start));
+  }
   return median(times);
 }
 

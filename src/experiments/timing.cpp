@@ -19,6 +19,16 @@ void burn_until(double start, double seconds) {
   while (thread_cpu_seconds() - start < seconds) sink = sink + 1;
 }
 
+// Runs `work` until this thread has used kMinBatchSeconds of CPU since `start`; returns the runs.
+std::uint64_t repeat_for_batch(const std::function<void()>& work, double start) {
+  std::uint64_t runs = 0;
+  do {
+    work();
+    ++runs;
+  } while (thread_cpu_seconds() - start < kMinBatchSeconds);
+  return runs;
+}
+
 }  // namespace
 
 const TimingField* find_timing_field(std::span<const TimingField> fields, std::string_view name) {
@@ -61,11 +71,7 @@ double TimedBatches::median() const { return bsp::median(samples); }
 
 double time_batch(const std::function<void()>& work) {
   const double start = thread_cpu_seconds();
-  std::uint64_t runs = 0;
-  do {
-    work();
-    ++runs;
-  } while (thread_cpu_seconds() - start < kMinBatchSeconds);
+  const std::uint64_t runs = repeat_for_batch(work, start);
   return (thread_cpu_seconds() - start) / static_cast<double>(runs);
 }
 
@@ -74,11 +80,7 @@ TimedBatches time_batches(const std::function<void()>& work, double plant, const
   for (int s = 0; s < kBatches; ++s) {
     if (reference) out.reference.push_back(time_batch(reference));
     const double start = thread_cpu_seconds();
-    std::uint64_t batch = 0;
-    do {
-      work();
-      ++batch;
-    } while (thread_cpu_seconds() - start < kMinBatchSeconds);
+    const std::uint64_t batch = repeat_for_batch(work, start);
     if (plant > 1) burn_until(start, plant * (thread_cpu_seconds() - start));
     out.samples.push_back((thread_cpu_seconds() - start) / static_cast<double>(batch));
     out.runs += batch;
