@@ -112,6 +112,18 @@ TEST_F(FuzzFindings, OffNumbersReadAsTheStreamReadsThem) {
   expect_mesh_error("fuzzer.off", found, "face 3 has a colour CGAL cannot read");
 }
 
+// CGAL's OFF header doubles the edge count in an int before it reads a vertex, so a claim of more
+// than INT_MAX / 2 edges is signed overflow (UndefinedBehaviorSanitizer, the mesh_reader fuzzer
+// with seed 1 after 92,385 runs; the second file is its input).
+TEST_F(FuzzFindings, OffEdgeCountCgalCannotDouble) {
+  const std::string triangle = "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  expect_mesh_error("edges.off", "OFF\n3 1 1333355555\n" + triangle, "header claims 1333355555 edges");
+  expect_mesh_error("negative_edges.off", "OFF\n3 1 -1333355555\n" + triangle, "header claims -1333355555 edges");
+  EXPECT_EQ(bsp::read_mesh(write("many_edges.off", "OFF\n3 1 1073741823\n" + triangle)).polygons.size(), 1u);
+  const std::string found = "OFF\n#z\xff\xff\xffhF\n 1 0 \n1333355555EEEEEEEEEEendfacet";
+  expect_mesh_error("fuzzer.off", found, "header claims 1333355555 edges");
+}
+
 TEST_F(FuzzFindings, PlyVertexCoordinateOfAnIntegerTypeOrAList) {
   const std::string header = "ply\nformat ascii 1.0\nelement vertex 3\n";
   const std::string rest = "property float y\nproperty float z\nelement face 1\n"

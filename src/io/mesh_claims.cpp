@@ -210,6 +210,11 @@ std::optional<std::pair<OffHeader, std::pair<long long, long long>>> off_counts(
     if (!n) return std::nullopt;
     counts.push_back(*n);
   }
+  // CGAL doubles the edge count in an int (File_header_OFF: halfedges = 2 * edges) before it reads
+  // a vertex: a claim that overflows there is undefined behaviour, and no file of ours is that big.
+  const long long edges = header->off ? counts.back() : 0;
+  if (edges > INT_MAX / 2 || edges < INT_MIN / 2)
+    fail(path, "header claims " + std::to_string(edges) + " edges, more than CGAL can count");
   return std::make_pair(*header, std::make_pair(counts[header->n_dimensional], counts[header->n_dimensional + 1]));
 }
 
