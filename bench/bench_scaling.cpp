@@ -13,7 +13,12 @@
 //       layout, freezing), which add up to build_vs_embree; at T = 2 the same two as seconds of
 //       thread time summed over the threads (choose_thread_seconds, machinery_thread_seconds);
 //       at T = 1 visit_nanoseconds, the build time over the sum of the fragments' depths: the cost
-//       of one fragment passing one level, which a build whose cost is its depth keeps flat in N.
+//       of one fragment passing one level, which a build whose cost is its depth keeps flat in N;
+//       and at T = 1 the rate of plane-side tests (BuildStats::side_tests) against this machine's
+//       ceilings (roofline.h): side_tests, side_test_rate (all tests over the build's time),
+//       choose_side_test_rate (the heuristic's tests over its choosing time), roofline_compute_rate
+//       and roofline_memory_rate (tests per second one core's FMA rate and read bandwidth allow),
+//       choose_rate_vs_roofline (the choosing rate over the lower ceiling, the one that binds).
 //       Embree builds once after each build, untimed by the benchmark, and every ratio is the
 //       median of the runs' ratios to it: a reference paired run by run, as the sweep's are
 //   scaling/traverse/SCENE/n:N/HEURISTIC  back-to-front from the 8 metric views; items = fragments
@@ -43,6 +48,7 @@
 #include "metrics/traversal_cost.h"
 #include "references.h"
 #include "resident_memory.h"
+#include "roofline.h"
 #include "split/registry.h"
 #include "tree/build.h"
 #include "tree/traverse.h"
@@ -74,6 +80,29 @@ ParamAssignments scene_params(const std::string& name, std::uint64_t n) {
   return p;
 }
 
+// This machine's ceilings for side tests, measured once per run, on first use.
+const Roofline& roofline() {
+  static const Roofline measured = measure_roofline(kReferenceRepeats);
+  return measured;
+}
+
+// The build's rate of plane-side tests on one thread against the machine's ceilings (roofline.h):
+// all of them over the whole build, and the heuristic's over its choosing time; then the choosing
+// rate as a fraction of the lower ceiling, which is the one that binds.
+void set_side_test_counters(benchmark::State& state, const BuildStats& stats, double build_seconds,
+                            double choose_seconds) {
+  const Roofline& r = roofline();
+  state.counters["side_tests"] = static_cast<double>(stats.side_tests);
+  state.counters["side_test_rate"] = static_cast<double>(stats.side_tests) / build_seconds;
+  state.counters["roofline_compute_rate"] = r.compute_tests_per_second();
+  state.counters["roofline_memory_rate"] = r.memory_tests_per_second();
+  if (stats.choose_side_tests == 0 || choose_seconds <= 0) return;
+  const double choose_rate = static_cast<double>(stats.choose_side_tests) / choose_seconds;
+  state.counters["choose_side_test_rate"] = choose_rate;
+  state.counters["choose_rate_vs_roofline"] =
+      choose_rate / std::min(r.compute_tests_per_second(), r.memory_tests_per_second());
+}
+
 // Median 1-thread build time per benchmark tail (scene, size, heuristic), for the 2-thread speedup.
 std::map<std::string, double>& one_thread_medians() {
   static std::map<std::string, double> medians;
@@ -103,6 +132,7 @@ void bm_build_vs_embree(benchmark::State& state, const Scene* s, std::string h, 
   const auto peak = build_peak_bytes(*s, h, tail + "/threads:" + std::to_string(threads));
   const experiments::ReferenceBuild reference(s->polygons, threads);
   std::vector<double> times, embree_times, vs_embree, choosing, machinery, choose_seconds, machinery_seconds;
+  BuildStats stats;  // the last run's; its counts are every run's
   for (auto _ : state) {
     const auto start = Clock::now();
     auto splitter = make_splitter(h, {}, kSeed);
@@ -119,6 +149,7 @@ void bm_build_vs_embree(benchmark::State& state, const Scene* s, std::string h, 
     machinery.push_back(t.stats.machinery_seconds / embree_time);
     choose_seconds.push_back(t.stats.choose_seconds);
     machinery_seconds.push_back(t.stats.machinery_seconds);
+    stats = t.stats;
     state.ResumeTiming();
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(s->polygons.size()));
@@ -129,6 +160,7 @@ void bm_build_vs_embree(benchmark::State& state, const Scene* s, std::string h, 
   if (threads == 1) {
     state.counters["choose_vs_embree"] = median(choosing);
     state.counters["machinery_vs_embree"] = median(machinery);
+    set_side_test_counters(state, stats, median(times), median(choose_seconds));
   } else {
     state.counters["choose_thread_seconds"] = median(choose_seconds);
     state.counters["machinery_thread_seconds"] = median(machinery_seconds);

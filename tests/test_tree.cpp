@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "catalog.h"
+#include "common/rng.h"
 #include "common/errors.h"
 #include "split/fragment_store.h"
 #include "split/registry.h"
@@ -241,6 +242,58 @@ TEST(FragmentStore, StoresNoTextureCoordinatesUnlessAsked) {
   EXPECT_TRUE(store.view(id).uv.empty());
 }
 
+// The batched count (one pass over the fragments for a block of planes, two planes per vector
+// instruction) against one count_sides per plane: the same counts and the same number of side
+// tests, for block sizes around the vector width and the block (odd, 32, 33, past two blocks), and
+// for the ties a sphere test cannot decide: planes through vertices, through a sphere's edge, and
+// the fragments' own planes.
+TEST(FragmentStore, CountingManyPlanesAtOnceMatchesOnePlaneAtATime) {
+  FragmentStore store;
+  Rng rng(7);
+  std::vector<std::uint32_t> ids;
+  std::vector<Plane> own;
+  for (std::uint32_t i = 0; i < 300; ++i) {
+    Polygon poly;
+    const Vec3 c{rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(-3, 3)};
+    for (int k = 0; k < 3 + static_cast<int>(i % 3); ++k)
+      poly.verts.push_back({c + Vec3{rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), i % 5 == 0 ? 0.0 : rng.uniform(-0.5, 0.5)}});
+    poly.source = i;
+    const auto plane = supporting_plane(poly);
+    if (!plane) continue;
+    own.push_back(*plane);
+    ids.push_back(store.add(poly, 0));
+  }
+  std::vector<Plane> planes;
+  for (std::size_t j = 0; j < 70; ++j) {
+    if (j % 3 == 0) planes.push_back(own[j]);  // a fragment's own plane: coplanar
+    else if (j % 3 == 1) {  // through a vertex of some fragment, or tangent to its sphere
+      const std::uint32_t id = ids[j];
+      const Vec3 n = normalize(Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)});
+      const Vec3 at = j % 2 ? store.points(id)[0] : store.sphere(id).center + n * store.sphere(id).radius;
+      planes.push_back({n, -dot(n, at)});
+    } else {
+      const Vec3 n = normalize(Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)});
+      planes.push_back({n, rng.uniform(-2, 2)});
+    }
+  }
+  const double eps = 1e-9;
+  for (std::size_t k : {1u, 2u, 7u, 31u, 32u, 33u, 70u}) {
+    const std::span<const Plane> block(planes.data(), k);
+    std::vector<SideCounts> batched(k);
+    const std::uint64_t before = store.side_tests();
+    store.count_sides(ids, block, eps, batched);
+    const std::uint64_t batched_tests = store.side_tests() - before;
+    for (std::size_t j = 0; j < k; ++j) {
+      const SideCounts one = store.count_sides(ids, block[j], eps);
+      EXPECT_EQ(batched[j].front, one.front) << "k " << k << " plane " << j;
+      EXPECT_EQ(batched[j].back, one.back) << "k " << k << " plane " << j;
+      EXPECT_EQ(batched[j].coplanar, one.coplanar) << "k " << k << " plane " << j;
+      EXPECT_EQ(batched[j].spanning, one.spanning) << "k " << k << " plane " << j;
+    }
+    EXPECT_EQ(store.side_tests() - before - batched_tests, batched_tests) << "k " << k;
+  }
+}
+
 TEST(CheckScene, RejectsTextureCoordinatesBeyondTheFloatRange) {
   Scene scene;
   scene.polygons.push_back(triangle(0, 0));
@@ -271,6 +324,18 @@ class SlowChooser final : public Splitter {
 };
 
 }  // namespace
+
+// The side tests of a chain of 20 parallel squares built with `first`, which tests nothing when
+// it chooses: node i partitions the 20 - i squares left, one sphere test each (210), and only a
+// square's own plane straddles its sphere, whose 4 vertices are then tested (80).
+TEST(BuildBill, SideTestsCountEveryPointTestedAgainstAPlane) {
+  const Tree chain = build(stacked_squares(20), "first");
+  EXPECT_EQ(chain.stats.side_tests, 290u);
+  EXPECT_EQ(chain.stats.choose_side_tests, 0u);
+  const Tree scored = build(stacked_squares(20), "crystal");
+  EXPECT_GT(scored.stats.choose_side_tests, 0u);
+  EXPECT_GT(scored.stats.side_tests, scored.stats.choose_side_tests);
+}
 
 // The build's bill (BuildStats): time inside choose is the heuristic's, the rest the machinery's,
 // and on one thread the two make up the build. A build on one thread here: 20 squares are far

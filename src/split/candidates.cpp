@@ -66,9 +66,14 @@ SideCounter::SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng) : ctx
   scale_ = static_cast<double>(m) / static_cast<double>(s);
 }
 
-SideCounts SideCounter::operator()(std::uint32_t id) const {
+std::vector<SideCounts> SideCounter::operator()(std::span<const std::uint32_t> candidates) const {
   const std::span<const std::uint32_t> counted = sampled_.empty() ? ctx_.ids : std::span<const std::uint32_t>(sampled_);
-  return ctx_.frags.count_sides(counted, ctx_.planes[ctx_.frags.plane(id)], ctx_.tol.plane_eps);
+  std::vector<Plane> planes;
+  planes.reserve(candidates.size());
+  for (auto id : candidates) planes.push_back(ctx_.planes[ctx_.frags.plane(id)]);
+  std::vector<SideCounts> counts(candidates.size());
+  ctx_.frags.count_sides(counted, planes, ctx_.tol.plane_eps, counts);
+  return counts;
 }
 
 }  // namespace bsp

@@ -50,8 +50,9 @@ ParamSpec sample_param(double default_s);
 class SideCounter {
  public:
   SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng);
-  // Fragment `id`'s plane against the counted fragments (the candidate counts as coplanar when counted).
-  SideCounts operator()(std::uint32_t id) const;
+  // Each candidate fragment's plane against the counted fragments (a candidate counts as coplanar
+  // with itself when counted), all in one pass over them (FragmentStore::count_sides).
+  std::vector<SideCounts> operator()(std::span<const std::uint32_t> candidates) const;
   // m / (fragments counted): multiplies a count into an estimate for the whole node.
   double scale() const { return scale_; }
 
@@ -65,10 +66,11 @@ class SideCounter {
 // type ordered by `<` (a number, or a pair for lexicographic tie-breaking).
 template <class Cost>
 std::uint32_t argmin_candidate(const SideCounter& count, std::span<const std::uint32_t> candidates, Cost cost) {
+  const std::vector<SideCounts> counts = count(candidates);
   std::uint32_t best = candidates.front();
-  auto best_cost = cost(best, count(best));
+  auto best_cost = cost(best, counts.front());
   for (std::size_t i = 1; i < candidates.size(); ++i) {
-    const auto c = cost(candidates[i], count(candidates[i]));
+    const auto c = cost(candidates[i], counts[i]);
     if (c < best_cost) {
       best_cost = c;
       best = candidates[i];

@@ -1,10 +1,15 @@
 #include "split/fragment_store.h"
 
 #include <cassert>
+#include <bit>
 #include <limits>
 #include <stdexcept>
 
 #include "geometry/segment2.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace bsp {
 
@@ -93,6 +98,7 @@ std::vector<std::uint32_t> FragmentStore::compact() {
   out.reserve(span_.size() - free_ids_.size(), live_vertices_);
   for (std::uint32_t id = 0; id < span_.size(); ++id)
     if (to_new[id] != kNone) to_new[id] = out.add(view(id), plane_[id], sphere_[id]);
+  out.side_tests_ = side_tests_;
   *this = std::move(out);
   return to_new;
 }
@@ -136,6 +142,90 @@ SideCounts FragmentStore::count_sides(std::span<const std::uint32_t> ids, const 
     }
   }
   return c;
+}
+
+void FragmentStore::count_sides(std::span<const std::uint32_t> ids, std::span<const Plane> planes, double eps,
+                                std::span<SideCounts> out) const {
+  for (std::size_t first = 0; first < planes.size(); first += kPlaneBlock) {
+    const std::size_t k = std::min(kPlaneBlock, planes.size() - first);
+    count_block(ids, planes.subspan(first, k), eps, out.subspan(first, k));
+  }
+}
+
+namespace {
+
+// The planes of a count_block call as arrays of their components, padded to an even count.
+struct PlaneBlock {
+  alignas(16) double nx[FragmentStore::kPlaneBlock], ny[FragmentStore::kPlaneBlock], nz[FragmentStore::kPlaneBlock],
+      d[FragmentStore::kPlaneBlock];
+  alignas(16) std::int64_t front[FragmentStore::kPlaneBlock] = {}, back[FragmentStore::kPlaneBlock] = {};
+  std::size_t k = 0;
+
+  explicit PlaneBlock(std::span<const Plane> planes) : k(planes.size()) {
+    for (std::size_t j = 0; j < FragmentStore::kPlaneBlock; ++j) {
+      const Plane p = j < k ? planes[j] : Plane{};
+      nx[j] = p.n.x, ny[j] = p.n.y, nz[j] = p.n.z, d[j] = p.d;
+    }
+  }
+
+  // Counts the planes the sphere is wholly in front of or behind; returns a bit per plane it
+  // straddles (or whose distance is not a number), which classify's per-vertex path decides.
+  std::uint32_t sphere(const BoundingSphere& s, double eps) {
+#if defined(__SSE2__)
+    // Two planes per instruction, in Plane::distance's order: ((nx*cx + ny*cy) + nz*cz) + d.
+    const __m128d cx = _mm_set1_pd(s.center.x), cy = _mm_set1_pd(s.center.y), cz = _mm_set1_pd(s.center.z);
+    const __m128d r = _mm_set1_pd(s.radius), pos = _mm_set1_pd(eps), neg = _mm_set1_pd(-eps);
+    std::uint32_t decided = 0;
+    for (std::size_t j = 0; j < k; j += 2) {
+      const __m128d dist = _mm_add_pd(
+          _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_load_pd(nx + j), cx), _mm_mul_pd(_mm_load_pd(ny + j), cy)),
+                     _mm_mul_pd(_mm_load_pd(nz + j), cz)),
+          _mm_load_pd(d + j));
+      const __m128d f = _mm_cmpgt_pd(_mm_sub_pd(dist, r), pos), b = _mm_cmplt_pd(_mm_add_pd(dist, r), neg);
+      auto* fv = reinterpret_cast<__m128i*>(front + j);
+      auto* bv = reinterpret_cast<__m128i*>(back + j);
+      _mm_store_si128(fv, _mm_sub_epi64(_mm_load_si128(fv), _mm_castpd_si128(f)));  // a true lane is -1
+      _mm_store_si128(bv, _mm_sub_epi64(_mm_load_si128(bv), _mm_castpd_si128(b)));
+      decided |= static_cast<std::uint32_t>(_mm_movemask_pd(_mm_or_pd(f, b))) << j;
+    }
+#else
+    std::uint32_t decided = 0;
+    for (std::size_t j = 0; j < k; ++j) {
+      const double dist = nx[j] * s.center.x + ny[j] * s.center.y + nz[j] * s.center.z + d[j];
+      const bool f = dist - s.radius > eps, b = dist + s.radius < -eps;
+      front[j] += f;
+      back[j] += b;
+      decided |= static_cast<std::uint32_t>(f || b) << j;
+    }
+#endif
+    const std::uint32_t all = k == 32 ? ~0u : (1u << k) - 1;
+    return ~decided & all;
+  }
+};
+
+}  // namespace
+
+// A padded lane (plane j >= k, all zero) may count; its counters are never read.
+void FragmentStore::count_block(std::span<const std::uint32_t> ids, std::span<const Plane> planes, double eps,
+                                std::span<SideCounts> out) const {
+  PlaneBlock block(planes);
+  for (auto id : ids) {
+    side_tests_ += block.k;
+    for (std::uint32_t open = block.sphere(sphere_[id], eps); open != 0; open &= open - 1) {
+      const auto j = static_cast<std::size_t>(std::countr_zero(open));
+      side_tests_ += span_[id].count;
+      switch (bsp::classify(points(id), planes[j], eps)) {
+        case Side::Front: ++block.front[j]; break;
+        case Side::Back: ++block.back[j]; break;
+        case Side::Coplanar: ++out[j].coplanar; break;
+        case Side::Spanning: ++out[j].spanning; break;
+      }
+    }
+  }
+  for (std::size_t j = 0; j < block.k; ++j) {
+    out[j].front += static_cast<std::uint32_t>(block.front[j]);
+    out[j].back += static_cast<std::uint32_t>(block.back[j]);
+  }
 }
 
 bool is_convex_set(std::span<const std::uint32_t> ids, const FragmentStore& frags,

@@ -60,10 +60,9 @@ class MinRelationSplitter final : public Splitter {
     Rng rng(stream_seed(seed_, ctx.node_key));
     const auto candidates = candidate_fragments(ctx, s_.candidates, rng);
     const SideCounter count(ctx, s_.sample, rng);
-    for (auto id : candidates) {
-      const SideCounts c = count(id);
-      scored.push_back({id, c.spanning, relation(c)});
-    }
+    const std::vector<SideCounts> counts = count(candidates);
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+      scored.push_back({candidates[i], counts[i].spanning, relation(counts[i])});
     return SplitChoice::of_fragment(best_qualifying(scored, threshold(scored)));
   }
 

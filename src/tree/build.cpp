@@ -61,6 +61,7 @@ class RecursiveBuilder {
   void run(WorkItem first) {
     if (first.ids.empty()) return;
     const auto start = Clock::now();
+    const std::uint64_t store_tests = store_.side_tests();
     std::vector<WorkItem> stack;
     stack.push_back(std::move(first));
     while (!stack.empty()) {
@@ -77,6 +78,8 @@ class RecursiveBuilder {
     // What the builder spent outside choose and outside the tasks it ran in place (each bills its own).
     tree_.stats.machinery_seconds += seconds_since(start) - choose_seconds_ - inline_task_seconds_;
     tree_.stats.choose_seconds += choose_seconds_;
+    tree_.stats.side_tests += store_.side_tests() - store_tests + partition_side_tests_;
+    tree_.stats.choose_side_tests += choose_side_tests_;
   }
 
  private:
@@ -205,8 +208,10 @@ class RecursiveBuilder {
     if (splitter_.needs_cell()) collect_cell_planes(item);
     const SplitContext ctx{item.ids, store_, tree_.planes, tree_.tol, tree_.bounds, cell_planes_, item.depth, item.key};
     const auto start = Clock::now();
+    const std::uint64_t tests = store_.side_tests();
     const SplitChoice choice = splitter_.choose(ctx);
     choose_seconds_ += seconds_since(start);
+    choose_side_tests_ += store_.side_tests() - tests;
     switch (choice.kind) {
       case SplitChoice::Kind::Fragment: return {store_.plane(choice.fragment), true};
       case SplitChoice::Kind::Free: return {tree_.planes.add(snap(choice.plane)), false};
@@ -259,6 +264,7 @@ class RecursiveBuilder {
         data = ids.data();
       }
     }
+    partition_side_tests_ += size;
     ids.resize(w);
     part.front = std::move(ids);
     return part;
@@ -269,6 +275,7 @@ class RecursiveBuilder {
   // fragment frees one slot and fills at most one.
   std::size_t place_undecided(std::uint32_t id, const Plane& plane, std::uint32_t* front, std::size_t w,
                               Partition& part) {
+    partition_side_tests_ += store_.points(id).size();
     switch (classify(store_.points(id), plane, tree_.tol.plane_eps)) {
       case Side::Front: front[w++] = id; break;
       case Side::Back: part.back.push_back(id); break;
@@ -324,6 +331,8 @@ class RecursiveBuilder {
   std::vector<bool> parent_front_;
   double choose_seconds_ = 0.0;       // this builder's time inside Splitter::choose
   double inline_task_seconds_ = 0.0;  // its time in task statements, which may run the task in place
+  std::uint64_t choose_side_tests_ = 0;     // the store's side tests made inside choose
+  std::uint64_t partition_side_tests_ = 0;  // partition's own, which bypasses the store's classify
 };
 
 // The main pool's index of every plane of a finished task's pool, by pair: the planes the task was
@@ -420,6 +429,8 @@ class Assembler {
     to.mixed_leaves += from.mixed_leaves;
     to.choose_seconds += from.choose_seconds;
     to.machinery_seconds += from.machinery_seconds;
+    to.side_tests += from.side_tests;
+    to.choose_side_tests += from.choose_side_tests;
     task = Task{};
   }
 

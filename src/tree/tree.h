@@ -75,6 +75,12 @@ struct BuildStats {
   // Timings: they depend on the machine, never on the tree. Zero for an incremental build.
   double choose_seconds = 0.0;
   double machinery_seconds = 0.0;
+  // Point-against-plane tests that classified fragments (a bounding-sphere centre, then each
+  // vertex when the sphere straddles the plane), all of them and those inside choose: the unit of
+  // the heuristics' and the partitioning's work, for a rate against the machine's (bench/roofline.h).
+  // Deterministic. Splitting's own vertex distances are not counted.
+  std::uint64_t side_tests = 0;
+  std::uint64_t choose_side_tests = 0;
 };
 
 // Built in scratch memory (tree/draft.h) and frozen; never modified afterwards. Traversal reads

@@ -1,0 +1,30 @@
+#pragma once
+// The ceilings of this machine for plane-side tests (BuildStats::side_tests), on one core, measured
+// in the run (Williams, Waterman and Patterson's roofline: a kernel is bound by compute or by memory
+// traffic, whichever allows fewer operations per second):
+//  - compute: the vector fused multiply-add rate in double precision, from a loop of independent
+//    FMAs (AVX2 + FMA when the CPU reports them at run time, else SSE2 multiply-then-add pairs).
+//    A side test is n . p - d: three multiply-adds.
+//  - memory: the read bandwidth of one core streaming an array 8 times the size of the last-level
+//    cache. A side test reads one vertex: 24 bytes of double position.
+// A test is a compare after the multiply-adds, so neither bound counts the branch that follows it;
+// both are upper bounds no build can pass.
+#include <cstddef>
+
+namespace bsp::bench {
+
+struct Roofline {
+  double fma_per_second = 0;         // double-precision FMAs, all vector lanes counted
+  double read_bytes_per_second = 0;  // streaming reads from memory
+  const char* fma_instructions = "";  // "avx2+fma" or "sse2"
+
+  static constexpr double kFmaPerTest = 3;
+  static constexpr double kBytesPerTest = 24;
+  double compute_tests_per_second() const { return fma_per_second / kFmaPerTest; }
+  double memory_tests_per_second() const { return read_bytes_per_second / kBytesPerTest; }
+};
+
+// The median of `repeats` timings of each kernel.
+Roofline measure_roofline(int repeats);
+
+}  // namespace bsp::bench
