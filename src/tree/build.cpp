@@ -348,8 +348,8 @@ std::vector<std::uint32_t> planes_to_main(PlanePool& main, Task& task) {
 // Lays the main builder's nodes and the tasks' subtrees out as one tree in pre-order (front child
 // first), the order a build without tasks makes, in arrays allocated once at their final size. A
 // task's subtree is already in pre-order, so it is copied as one block with its links shifted; its
-// fragments move into the main store (into freed spans where they fit, else at the end), and each
-// task's store is freed as soon as it is copied.
+// fragments stay in the task's store, which joins the draft's task_stores, until freeze() packs
+// them: copied once, not twice.
 class Assembler {
  public:
   Assembler(TreeDraft& main, std::vector<std::unique_ptr<Task>>& tasks) : main_(main), tasks_(tasks) {}
@@ -362,10 +362,11 @@ class Assembler {
       nodes += tasks_[t]->tree.nodes.size();
       fragments += tasks_[t]->tree.fragments.size();
     }
-    main_.store.reserve(fragments, main_.store.vertex_slots() + vertices_to_add());
     nodes_.reserve(nodes);
     fragments_.reserve(fragments);
     planes_.reserve(fragments);
+    stores_.reserve(fragments);
+    main_.task_stores.reserve(tasks_.size());
     std::vector<Pending> stack{{0, false, kNull, true}};
     while (!stack.empty()) {
       const Pending p = stack.back();
@@ -378,6 +379,7 @@ class Assembler {
     main_.nodes = std::move(nodes_);
     main_.fragments = std::move(fragments_);
     main_.fragment_plane = std::move(planes_);
+    main_.fragment_store = std::move(stores_);
   }
 
  private:
@@ -393,7 +395,7 @@ class Assembler {
     const DraftNode& old = main_.nodes[index];
     DraftNode n = old;
     n.front = n.back = kNull;  // set when the children are laid out
-    append_fragments(n, [&](std::uint32_t f) { return std::pair(main_.fragments[f], main_.fragment_plane[f]); });
+    append_fragments(n, 0, [&](std::uint32_t f) { return std::pair(main_.fragments[f], main_.fragment_plane[f]); });
     nodes_.push_back(n);
     push_child(stack, old.back, hung_[2 * index + 1], at, false);
     push_child(stack, old.front, hung_[2 * index], at, true);
@@ -409,14 +411,14 @@ class Assembler {
     const std::vector<std::uint32_t> to_main = planes_to_main(main_.planes, task);
     const auto remap = [&](std::uint32_t p) { return to_main[p >> 1] ^ (p & 1u); };
     const auto offset = static_cast<std::uint32_t>(nodes_.size());
+    main_.task_stores.push_back(std::move(task.tree.store));
+    const auto store = static_cast<std::uint32_t>(main_.task_stores.size());
     for (DraftNode n : task.tree.nodes) {
       if (n.plane != kNull) n.plane = remap(n.plane);
       if (n.front != kNull) n.front += offset;
       if (n.back != kNull) n.back += offset;
-      append_fragments(n, [&](std::uint32_t f) {
-        const std::uint32_t id = task.tree.fragments[f];
-        const std::uint32_t plane = remap(task.tree.fragment_plane[f]);
-        return std::pair(main_.store.add(task.tree.store.view(id), plane, task.tree.store.sphere(id)), plane);
+      append_fragments(n, store, [&](std::uint32_t f) {
+        return std::pair(task.tree.fragments[f], remap(task.tree.fragment_plane[f]));
       });
       nodes_.push_back(n);
     }
@@ -434,31 +436,27 @@ class Assembler {
     task = Task{};
   }
 
-  // Appends node n's fragments, (main-store id, plane) = take(f) for each of its old positions f,
-  // and points n at them.
+  // Appends node n's fragments, (id in `store`, plane) = take(f) for each of its old positions f,
+  // and points n at them. `store` as TreeDraft::fragment_store.
   template <class Take>
-  void append_fragments(DraftNode& n, Take take) {
+  void append_fragments(DraftNode& n, std::uint32_t store, Take take) {
     const std::uint32_t first = n.first;
     n.first = static_cast<std::uint32_t>(fragments_.size());
     for (std::uint32_t f = first; f < first + n.count; ++f) {
       const auto [id, plane] = take(f);
       fragments_.push_back(id);
       planes_.push_back(plane);
+      stores_.push_back(store);
     }
-  }
-
-  std::size_t vertices_to_add() const {
-    std::size_t n = 0;
-    for (const auto& t : tasks_) n += t->tree.store.vertices_live();
-    return n;
   }
 
   TreeDraft& main_;
   std::vector<std::unique_ptr<Task>>& tasks_;
   std::vector<std::uint32_t> hung_;  // per main node and side (2n front, 2n+1 back): the task hung there
   PageVector<DraftNode> nodes_;
-  std::vector<std::uint32_t> fragments_;  // ids in the main store
+  std::vector<std::uint32_t> fragments_;  // ids in the stores of stores_
   std::vector<std::uint32_t> planes_;
+  std::vector<std::uint32_t> stores_;  // as TreeDraft::fragment_store
 };
 
 // Builds the tree top-down; subtrees handed off run as OpenMP tasks on the other threads while the

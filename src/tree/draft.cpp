@@ -23,26 +23,33 @@ void renumber_planes(TreeDraft& d) {
   d.planes = std::move(renumbered);
 }
 
-bool any_tex_coords(const FragmentStore& store, const std::vector<std::uint32_t>& ids) {
-  for (auto id : ids)
-    for (const TexCoord& t : store.view(id).uv)
+// Fragment i of the draft, read where it is (TreeDraft::fragment_store).
+FragmentView fragment_view(const TreeDraft& d, std::size_t i) {
+  const std::uint32_t s = d.fragment_store.empty() ? 0 : d.fragment_store[i];
+  return (s == 0 ? d.store : d.task_stores[s - 1]).view(d.fragments[i]);
+}
+
+bool any_tex_coords(const TreeDraft& d) {
+  if (!d.store.has_tex_coords()) return false;  // every task's store was made like the main one
+  for (std::size_t i = 0; i < d.fragments.size(); ++i)
+    for (const TexCoord& t : fragment_view(d, i).uv)
       if (t.u != 0 || t.v != 0) return true;
   return false;
 }
 
 // Copies the fragments into the flat array in node order, in parallel: a million fragments take a
 // few hundred milliseconds to copy on one thread.
-void pack(const FragmentStore& store, const std::vector<std::uint32_t>& ids, FragmentArray& out) {
-  std::vector<std::uint32_t> counts(ids.size()), sources(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    const FragmentView f = store.view(ids[i]);
+void pack(const TreeDraft& d, FragmentArray& out) {
+  std::vector<std::uint32_t> counts(d.fragments.size()), sources(d.fragments.size());
+  for (std::size_t i = 0; i < d.fragments.size(); ++i) {
+    const FragmentView f = fragment_view(d, i);
     counts[i] = static_cast<std::uint32_t>(f.size());
     sources[i] = f.source;
   }
-  out.lay_out(counts, sources, store.has_tex_coords() && any_tex_coords(store, ids));
-  const auto n = static_cast<std::int64_t>(ids.size());
-#pragma omp parallel for schedule(static) default(none) shared(store, ids, out, n)
-  for (std::int64_t i = 0; i < n; ++i) out.write(static_cast<std::size_t>(i), store.view(ids[static_cast<std::size_t>(i)]));
+  out.lay_out(counts, sources, any_tex_coords(d));
+  const auto n = static_cast<std::int64_t>(d.fragments.size());
+#pragma omp parallel for schedule(static) default(none) shared(d, out, n)
+  for (std::int64_t i = 0; i < n; ++i) out.write(static_cast<std::size_t>(i), fragment_view(d, static_cast<std::size_t>(i)));
 }
 
 }  // namespace
@@ -63,9 +70,12 @@ Tree freeze(TreeDraft&& draft) {
   for (const DraftNode& n : draft.nodes) tree.nodes.push_back({n.plane, n.front, n.back, n.first});
   free_memory(draft.nodes);
   draft.store.drop_build_data();
-  pack(draft.store, draft.fragments, tree.fragments);
+  for (FragmentStore& s : draft.task_stores) s.drop_build_data();
+  pack(draft, tree.fragments);
   draft.store = FragmentStore{};
+  draft.task_stores.clear();
   free_memory(draft.fragments);
+  free_memory(draft.fragment_store);
   return tree;
 }
 

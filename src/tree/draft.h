@@ -31,6 +31,11 @@ struct TreeDraft {
   FragmentStore store;                       // the fragments, and during the build every pending one
   std::vector<std::uint32_t> fragments;      // ids in `store`, node after node
   std::vector<std::uint32_t> fragment_plane;  // parallel to `fragments`
+  // The stores of subtrees built as tasks (tree/build.cpp), whose fragments stay where their task
+  // made them until freeze() packs them: fragment i is an id in task_stores[fragment_store[i] - 1],
+  // or in `store` when fragment_store[i] is 0 or fragment_store is empty (a build without tasks).
+  std::vector<FragmentStore> task_stores;
+  std::vector<std::uint32_t> fragment_store;
   Shape shape = Shape::Strict;
   Tolerance tol;
   Box bounds;
