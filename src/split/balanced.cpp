@@ -24,7 +24,7 @@ class BalancedSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     Rng rng(stream_seed(seed_, ctx.node_key));
-    const auto candidates = candidate_fragments(ctx, candidates_, rng);
+    const auto candidates = candidate_fragments(ctx, candidates_, rng, marks_);
     const SideCounter count(ctx, sample_, rng);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [](std::uint32_t, const SideCounts& c) {
       const auto imbalance = c.front > c.back ? c.front - c.back : c.back - c.front;
@@ -34,6 +34,7 @@ class BalancedSplitter final : public Splitter {
 
  private:
   std::uint64_t candidates_, sample_, seed_;
+  PlaneMarks marks_;  // candidate_fragments' scratch
 };
 
 }  // namespace

@@ -20,21 +20,26 @@ ParamSpec candidates_param(double default_k, const std::string& doc_suffix) {
 namespace {
 
 // Positions in ctx.ids of the first fragment on each distinct plane pair, ascending.
-std::vector<std::uint32_t> distinct_plane_positions(const SplitContext& ctx) {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed(ctx.ids.size());
-  for (std::uint32_t i = 0; i < ctx.ids.size(); ++i) keyed[i] = {ctx.frags.plane(ctx.ids[i]) >> 1, i};
-  std::sort(keyed.begin(), keyed.end());
+std::vector<std::uint32_t> distinct_plane_positions(const SplitContext& ctx, PlaneMarks& marks) {
+  marks.begin(ctx.planes.size() / 2);
   std::vector<std::uint32_t> positions;
-  for (std::size_t i = 0; i < keyed.size(); ++i)
-    if (i == 0 || keyed[i].first != keyed[i - 1].first) positions.push_back(keyed[i].second);
-  std::sort(positions.begin(), positions.end());
+  for (std::uint32_t i = 0; i < ctx.ids.size(); ++i)
+    if (marks.first_sight(ctx.frags.plane(ctx.ids[i]) >> 1)) positions.push_back(i);
   return positions;
 }
 
 }  // namespace
 
-std::vector<std::uint32_t> candidate_fragments(const SplitContext& ctx, std::size_t k, Rng& rng) {
-  std::vector<std::uint32_t> positions = distinct_plane_positions(ctx);
+void PlaneMarks::begin(std::size_t pairs) {
+  if (stamp_.size() < pairs) stamp_.resize(pairs, pass_);
+  if (++pass_ == 0) {  // the stamps wrapped: clear them once every 2^32 passes
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    pass_ = 1;
+  }
+}
+
+std::vector<std::uint32_t> candidate_fragments(const SplitContext& ctx, std::size_t k, Rng& rng, PlaneMarks& marks) {
+  std::vector<std::uint32_t> positions = distinct_plane_positions(ctx, marks);
   if (k > 0 && k < positions.size()) {
     // Partial Fisher-Yates: the first k entries become a uniform sample without replacement.
     for (std::size_t i = 0; i < k; ++i) std::swap(positions[i], positions[i + rng.below(positions.size() - i)]);

@@ -33,12 +33,34 @@ inline constexpr std::uint64_t kSampledCandidates = 32;
 // Note for presets whose source scores every candidate.
 inline constexpr const char* kSourceScoresAll = "; its source scores all (candidates = 0 reproduces it)";
 
+// Scratch for candidate_fragments: a stamp per pooled plane pair, so finding the node's distinct
+// planes takes one pass over its fragments instead of a sort. Each splitter owns one; it is
+// scratch, not state, so a copy (a task's clone of the splitter) starts empty.
+class PlaneMarks {
+ public:
+  PlaneMarks() = default;
+  PlaneMarks(const PlaneMarks&) {}
+  PlaneMarks& operator=(const PlaneMarks&) { return *this; }
+  // Starts a pass over a pool of `pairs` plane pairs: every pair is unseen again.
+  void begin(std::size_t pairs);
+  // True the first time the pair is seen in this pass.
+  bool first_sight(std::uint32_t pair) {
+    if (stamp_[pair] == pass_) return false;
+    stamp_[pair] = pass_;
+    return true;
+  }
+
+ private:
+  std::vector<std::uint32_t> stamp_;
+  std::uint32_t pass_ = 0;
+};
+
 // One fragment per distinct pooled plane among ctx.ids (a plane and its flip count as one, since
 // they make the same partition), the first in ids order. When 0 < k < that number, k of them drawn
 // uniformly without replacement from `rng`; the result is in ids order either way, so ties between
 // equal scores go to the fragment that comes first in the node's set. Sampling over distinct planes
 // rather than fragments keeps a plane shared by many coplanar fragments from being scored twice.
-std::vector<std::uint32_t> candidate_fragments(const SplitContext& ctx, std::size_t k, Rng& rng);
+std::vector<std::uint32_t> candidate_fragments(const SplitContext& ctx, std::size_t k, Rng& rng, PlaneMarks& marks);
 
 // The `sample` parameter: s = 0 counts every fragment of the node.
 ParamSpec sample_param(double default_s);

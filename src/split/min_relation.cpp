@@ -58,7 +58,7 @@ class MinRelationSplitter final : public Splitter {
   SplitChoice choose(const SplitContext& ctx) override {
     std::vector<Scored> scored;
     Rng rng(stream_seed(seed_, ctx.node_key));
-    const auto candidates = candidate_fragments(ctx, s_.candidates, rng);
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng, marks_);
     const SideCounter count(ctx, s_.sample, rng);
     const std::vector<SideCounts> counts = count(candidates);
     for (std::size_t i = 0; i < candidates.size(); ++i)
@@ -92,6 +92,7 @@ class MinRelationSplitter final : public Splitter {
 
   MinRelationSettings s_;
   std::uint64_t seed_;
+  PlaneMarks marks_;  // candidate_fragments' scratch
 };
 
 }  // namespace

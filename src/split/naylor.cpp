@@ -70,7 +70,7 @@ class NaylorSplitter final : public Splitter {
     update_cell(ctx);
     const double whole = measure(cells_.back().volume(), cells_.back().surface_area());
     Rng rng(stream_seed(seed_, ctx.node_key));
-    const auto candidates = candidate_fragments(ctx, s_.candidates, rng);
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng, marks_);
     const SideCounter count(ctx, s_.sample, rng);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [&](std::uint32_t id, const SideCounts& c) {
       const auto [p_front, p_back] = probabilities(ctx, ctx.planes[ctx.frags.plane(id)], whole);
@@ -133,6 +133,7 @@ class NaylorSplitter final : public Splitter {
 
   NaylorSettings s_;
   std::uint64_t seed_;
+  PlaneMarks marks_;  // candidate_fragments' scratch
   std::vector<std::uint32_t> path_;     // the planes the previous node's cell was cut by
   std::vector<ConvexPolytope> cells_;  // cells_[i]: the root cell cut by path_[0, i)
   double prism_height_ = 0;            // 2D scenes: the height of the prisms cells are measured on

@@ -25,7 +25,7 @@ class WeightedSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     Rng rng(stream_seed(seed_, ctx.node_key));
-    const auto candidates = candidate_fragments(ctx, s_.candidates, rng);
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng, marks_);
     const SideCounter count(ctx, s_.sample, rng);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [&](std::uint32_t id, const SideCounts& c) {
       return cost(ctx.planes[ctx.frags.plane(id)], c, count.scale());
@@ -42,6 +42,7 @@ class WeightedSplitter final : public Splitter {
 
   WeightedSettings s_;
   std::uint64_t seed_;
+  PlaneMarks marks_;  // candidate_fragments' scratch
 };
 
 ParamSpec weight_param(const char* name, const std::string& doc, double default_value) {
