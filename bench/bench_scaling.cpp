@@ -5,8 +5,10 @@
 //       the tree's metrics, embree_bvh_seconds (Embree's MEDIUM BVH of the same triangles on as
 //       many threads as the build, built after each build), build_vs_embree (the median over the
 //       runs of each build's time over the Embree build after it),
-//       bytes_per_fragment, build_peak_vs_tree (how far resident memory rose during one more
-//       build, the finished tree included, over the tree's bytes; resident_memory.h); at T = 2
+//       bytes_per_fragment (and its parts: position_, attribute_, record_, node_ and
+//       plane_bytes_per_fragment, tree.h's TreeBytes), build_peak_vs_tree (how far resident
+//       memory rose during one more build, the finished tree included, over the tree's bytes;
+//       resident_memory.h); at T = 2
 //       also speedup (the 1-thread median build time / this one's); and the build's bill
 //       (BuildStats): at T = 1 choose_vs_embree (time inside the heuristic's choose) and
 //       machinery_vs_embree (the build's own work: loading, partitioning, splitting, node emission,
@@ -103,6 +105,21 @@ void set_side_test_counters(benchmark::State& state, const BuildStats& stats, do
       choose_rate / std::min(r.compute_tests_per_second(), r.memory_tests_per_second());
 }
 
+// Bytes per fragment of the tree, in all and part by part (TreeBytes).
+void set_memory_counters(benchmark::State& state, const Tree& t) {
+  if (t.fragments.empty()) return;
+  const TreeBytes b = t.bytes_by_part();
+  const auto per_fragment = [&](std::size_t bytes) {
+    return static_cast<double>(bytes) / static_cast<double>(t.fragments.size());
+  };
+  state.counters["bytes_per_fragment"] = per_fragment(b.total());
+  state.counters["position_bytes_per_fragment"] = per_fragment(b.positions);
+  state.counters["attribute_bytes_per_fragment"] = per_fragment(b.attributes);
+  state.counters["record_bytes_per_fragment"] = per_fragment(b.fragments);
+  state.counters["node_bytes_per_fragment"] = per_fragment(b.nodes);
+  state.counters["plane_bytes_per_fragment"] = per_fragment(b.planes);
+}
+
 // Median 1-thread build time per benchmark tail (scene, size, heuristic), for the 2-thread speedup.
 std::map<std::string, double>& one_thread_medians() {
   static std::map<std::string, double> medians;
@@ -178,8 +195,7 @@ void bm_build_vs_embree(benchmark::State& state, const Scene* s, std::string h, 
   else if (auto it = one_thread_medians().find(tail); it != one_thread_medians().end())
     state.counters["speedup"] = it->second / build;
   if (peak) state.counters["build_peak_vs_tree"] = static_cast<double>(*peak) / static_cast<double>(t.bytes());
-  state.counters["bytes_per_fragment"] =
-      t.fragments.empty() ? 0.0 : static_cast<double>(t.bytes()) / static_cast<double>(t.fragments.size());
+  set_memory_counters(state, t);
 }
 
 void bm_traverse_vs_sort(benchmark::State& state, const Scene* s, std::string h) {

@@ -294,6 +294,21 @@ TEST(FragmentStore, CountingManyPlanesAtOnceMatchesOnePlaneAtATime) {
   }
 }
 
+// A tree's bytes by part: 20 squares of 4 vertices (texture coordinates included) hold 80 positions
+// of 24 bytes and 80 attribute pairs of 8; without texture coordinates, none.
+TEST(TreeBytes, PartsAddUpAndCountPositionsAndAttributesApart) {
+  const Tree tree = build(stacked_squares(20), "first");
+  const TreeBytes b = tree.bytes_by_part();
+  EXPECT_EQ(b.positions, 80u * 24u);
+  EXPECT_EQ(b.attributes, 80u * 8u);
+  EXPECT_EQ(b.nodes, 20u * sizeof(Node));
+  EXPECT_EQ(b.total(), tree.bytes());
+  std::vector<Polygon> plain = stacked_squares(20);
+  for (Polygon& p : plain)
+    for (Vertex& v : p.verts) v.u = v.v = 0;
+  EXPECT_EQ(build(plain, "first").bytes_by_part().attributes, 0u);
+}
+
 TEST(CheckScene, RejectsTextureCoordinatesBeyondTheFloatRange) {
   Scene scene;
   scene.polygons.push_back(triangle(0, 0));

@@ -29,16 +29,26 @@ struct Ratio {
 // Embree's primary rays timed after each of its runs, not against std::sort: on a virtual machine
 // the traversal's speed drifts by up to 2x between runs while a sort's barely moves, and Embree's
 // traversal of its BVH drifts with ours (docs/results/gate-timing.md); traverse_vs_sort, the
-// figure a renderer choosing between a BSP and a depth sort wants, is listed when it moves.
+// figure a renderer choosing between a BSP and a depth sort wants, is listed when it moves. So is
+// the heuristic's rate of side tests over this machine's roofline (bench/roofline.h), whose
+// kernels do not drift with the build's code the way Embree's build does.
 constexpr Ratio kRatios[] = {{"build_vs_embree", Better::Lower, true},
                              {"choose_vs_embree", Better::Lower, true},
                              {"machinery_vs_embree", Better::Lower, true},
                              {"traverse_vs_embree_rays", Better::Lower, true},
                              {"traverse_vs_sort", Better::Lower, false},
                              {"build_peak_vs_tree", Better::Lower, true},
-                             {"speedup", Better::Higher, false}};
-// Deterministic counters of the tree.
-constexpr const char* kCounts[] = {"fragments", "bytes_per_fragment"};
+                             {"speedup", Better::Higher, false},
+                             {"choose_rate_vs_roofline", Better::Higher, false}};
+// Deterministic counters of the tree and of the build's work.
+constexpr const char* kCounts[] = {"fragments",
+                                   "side_tests",
+                                   "bytes_per_fragment",
+                                   "position_bytes_per_fragment",
+                                   "attribute_bytes_per_fragment",
+                                   "record_bytes_per_fragment",
+                                   "node_bytes_per_fragment",
+                                   "plane_bytes_per_fragment"};
 
 // Benchmarks by name; aggregates of repetitions (mean, median, stddev rows) are skipped, as the
 // ratios are medians already.

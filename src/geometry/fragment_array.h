@@ -54,8 +54,10 @@ class FragmentArray {
   void write(std::size_t i, const FragmentView& f);
   void push_back(const Polygon& poly);
   std::vector<Polygon> to_polygons() const;
-  // The bytes stored (sizes, not capacities).
+  // The bytes stored (sizes, not capacities): positions, attributes and per-fragment records.
   std::size_t bytes() const;
+  std::size_t position_bytes() const { return points_.size() * sizeof(Vec3); }
+  std::size_t attribute_bytes() const { return uv_.size() * sizeof(TexCoord); }
 
   class Iterator {
    public:

@@ -17,9 +17,14 @@ std::optional<Shape> shape_named(std::string_view name) {
   return std::nullopt;
 }
 
-std::size_t Tree::bytes() const {
-  return nodes.size() * sizeof(Node) + planes.bytes() + fragments.bytes() +
-         fragment_plane.size() * sizeof(std::uint32_t);
+TreeBytes Tree::bytes_by_part() const {
+  TreeBytes b;
+  b.positions = fragments.position_bytes();
+  b.attributes = fragments.attribute_bytes();
+  b.fragments = fragments.bytes() - b.positions - b.attributes + fragment_plane.size() * sizeof(std::uint32_t);
+  b.nodes = nodes.size() * sizeof(Node);
+  b.planes = planes.bytes();
+  return b;
 }
 
 }  // namespace bsp

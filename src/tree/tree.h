@@ -83,6 +83,16 @@ struct BuildStats {
   std::uint64_t choose_side_tests = 0;
 };
 
+// Where a tree's bytes go (Tree::bytes), part by part.
+struct TreeBytes {
+  std::size_t positions = 0;   // fragment vertices: 24 bytes each (three doubles)
+  std::size_t attributes = 0;  // texture coordinates: 8 bytes per vertex, only when the input has any
+  std::size_t fragments = 0;   // per fragment: its vertex offset, source and supporting plane
+  std::size_t nodes = 0;
+  std::size_t planes = 0;  // the pool: planes and the hash index that shares them
+  std::size_t total() const { return positions + attributes + fragments + nodes + planes; }
+};
+
 // Built in scratch memory (tree/draft.h) and frozen; never modified afterwards. Traversal reads
 // nodes, planes and fragment_plane; vertices are read only by queries that need the geometry.
 struct Tree {
@@ -102,7 +112,8 @@ struct Tree {
   }
   // The bytes of what the tree stores, the plane pool included (sizes, not capacities), so the
   // count is the same with any standard library's growth policy and can be compared exactly.
-  std::size_t bytes() const;
+  std::size_t bytes() const { return bytes_by_part().total(); }
+  TreeBytes bytes_by_part() const;
 };
 
 }  // namespace bsp
