@@ -6,8 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include <benchmark/benchmark.h>
-
+#include "bench_common.h"
 #include "metrics/statistics.h"
 
 namespace bsp::bench {
@@ -15,8 +14,6 @@ namespace bsp::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // Independent accumulators: enough to cover an FMA's latency on both of a core's FMA pipes (Zen:
 // 4 or 5 cycles, 2 pipes), so the loop runs at the throughput bound, not the latency bound.
