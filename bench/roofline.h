@@ -6,9 +6,12 @@
 //    FMAs (AVX2 + FMA when the CPU reports them at run time, else SSE2 multiply-then-add pairs).
 //    A side test is n . p - d: three multiply-adds.
 //  - memory: the read bandwidth of one core streaming an array 8 times the size of the last-level
-//    cache. A side test reads one vertex: 24 bytes of double position.
-// A test is a compare after the multiply-adds, so neither bound counts the branch that follows it;
-// both are upper bounds no build can pass.
+//    cache, over the bytes a test reads. A test that reads its own point (a vertex: 24 bytes of
+//    double position, as the partition's and the per-vertex paths do) is bound at bandwidth / 24;
+//    the scorers' batched tests read one bounding sphere and id (40 bytes) per fragment for k
+//    planes, 40 / k bytes per test, so their memory bound is k / 40 of the bandwidth.
+// A test is a compare after the multiply-adds, so neither bound counts the branch that follows it.
+// The compute bound holds for every test; which bound binds depends on the bytes per test.
 #include <cstddef>
 
 namespace bsp::bench {
@@ -19,9 +22,12 @@ struct Roofline {
   const char* fma_instructions = "";  // "avx2+fma" or "sse2"
 
   static constexpr double kFmaPerTest = 3;
-  static constexpr double kBytesPerTest = 24;
+  static constexpr double kVertexBytes = 24;
   double compute_tests_per_second() const { return fma_per_second / kFmaPerTest; }
-  double memory_tests_per_second() const { return read_bytes_per_second / kBytesPerTest; }
+  // Tests per second when each reads `bytes_per_test` from memory (kVertexBytes: its own vertex).
+  double memory_tests_per_second(double bytes_per_test = kVertexBytes) const {
+    return read_bytes_per_second / bytes_per_test;
+  }
 };
 
 // The median of `repeats` timings of each kernel.

@@ -7,8 +7,8 @@
 #include <numeric>
 
 #include "catalog.h"
-#include "common/rng.h"
 #include "common/errors.h"
+#include "common/rng.h"
 #include "split/fragment_store.h"
 #include "split/registry.h"
 #include "tree/build.h"
@@ -350,6 +350,9 @@ TEST(BuildBill, SideTestsCountEveryPointTestedAgainstAPlane) {
   const Tree scored = build(stacked_squares(20), "crystal");
   EXPECT_GT(scored.stats.choose_side_tests, 0u);
   EXPECT_GT(scored.stats.side_tests, scored.stats.choose_side_tests);
+  // Inserted one at a time, each square descends past the 0-19 squares before it: 190 sphere tests,
+  // and its own plane straddles no earlier square's sphere.
+  EXPECT_EQ(build_incremental_tree(stacked_squares(20), {}).stats.side_tests, 190u);
 }
 
 // The build's bill (BuildStats): time inside choose is the heuristic's, the rest the machinery's,

@@ -30,7 +30,7 @@ struct Ratio {
 // the traversal's speed drifts by up to 2x between runs while a sort's barely moves, and Embree's
 // traversal of its BVH drifts with ours (docs/results/gate-timing.md); traverse_vs_sort, the
 // figure a renderer choosing between a BSP and a depth sort wants, is listed when it moves. So is
-// the heuristic's rate of side tests over this machine's roofline (bench/roofline.h), whose
+// the heuristic's rate of side tests over this machine's compute ceiling (bench/roofline.h), whose
 // kernels do not drift with the build's code the way Embree's build does.
 constexpr Ratio kRatios[] = {{"build_vs_embree", Better::Lower, true},
                              {"choose_vs_embree", Better::Lower, true},
@@ -39,7 +39,7 @@ constexpr Ratio kRatios[] = {{"build_vs_embree", Better::Lower, true},
                              {"traverse_vs_sort", Better::Lower, false},
                              {"build_peak_vs_tree", Better::Lower, true},
                              {"speedup", Better::Higher, false},
-                             {"choose_rate_vs_roofline", Better::Higher, false}};
+                             {"choose_rate_vs_compute", Better::Higher, false}};
 // Deterministic counters of the tree and of the build's work.
 constexpr const char* kCounts[] = {"fragments",
                                    "side_tests",

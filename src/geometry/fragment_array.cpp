@@ -61,9 +61,6 @@ std::vector<Polygon> FragmentArray::to_polygons() const {
   return out;
 }
 
-std::size_t FragmentArray::bytes() const {
-  return points_.size() * sizeof(Vec3) + uv_.size() * sizeof(TexCoord) + start_.size() * sizeof(std::uint32_t) +
-         source_.size() * sizeof(std::uint32_t);
-}
+std::size_t FragmentArray::bytes() const { return position_bytes() + attribute_bytes() + record_bytes(); }
 
 }  // namespace bsp

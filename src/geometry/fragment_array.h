@@ -58,6 +58,7 @@ class FragmentArray {
   std::size_t bytes() const;
   std::size_t position_bytes() const { return points_.size() * sizeof(Vec3); }
   std::size_t attribute_bytes() const { return uv_.size() * sizeof(TexCoord); }
+  std::size_t record_bytes() const { return (start_.size() + source_.size()) * sizeof(std::uint32_t); }
 
   class Iterator {
    public:

@@ -1,7 +1,7 @@
 #include "split/fragment_store.h"
 
-#include <cassert>
 #include <bit>
+#include <cassert>
 #include <limits>
 #include <stdexcept>
 
@@ -146,6 +146,7 @@ SideCounts FragmentStore::count_sides(std::span<const std::uint32_t> ids, const 
 
 void FragmentStore::count_sides(std::span<const std::uint32_t> ids, std::span<const Plane> planes, double eps,
                                 std::span<SideCounts> out) const {
+  assert(out.size() >= planes.size());
   for (std::size_t first = 0; first < planes.size(); first += kPlaneBlock) {
     const std::size_t k = std::min(kPlaneBlock, planes.size() - first);
     count_block(ids, planes.subspan(first, k), eps, out.subspan(first, k));
@@ -170,7 +171,7 @@ struct PlaneBlock {
 
   // Counts the planes the sphere is wholly in front of or behind; returns a bit per plane it
   // straddles (or whose distance is not a number), which classify's per-vertex path decides.
-  std::uint32_t sphere(const BoundingSphere& s, double eps) {
+  std::uint32_t undecided_by_sphere(const BoundingSphere& s, double eps) {
 #if defined(__SSE2__)
     // Two planes per instruction, in Plane::distance's order: ((nx*cx + ny*cy) + nz*cz) + d.
     const __m128d cx = _mm_set1_pd(s.center.x), cy = _mm_set1_pd(s.center.y), cz = _mm_set1_pd(s.center.z);
@@ -198,7 +199,7 @@ struct PlaneBlock {
       decided |= static_cast<std::uint32_t>(f || b) << j;
     }
 #endif
-    const std::uint32_t all = k == 32 ? ~0u : (1u << k) - 1;
+    const std::uint32_t all = k == FragmentStore::kPlaneBlock ? ~0u : (1u << k) - 1;
     return ~decided & all;
   }
 };
@@ -211,7 +212,7 @@ void FragmentStore::count_block(std::span<const std::uint32_t> ids, std::span<co
   PlaneBlock block(planes);
   for (auto id : ids) {
     side_tests_ += block.k;
-    for (std::uint32_t open = block.sphere(sphere_[id], eps); open != 0; open &= open - 1) {
+    for (std::uint32_t open = block.undecided_by_sphere(sphere_[id], eps); open != 0; open &= open - 1) {
       const auto j = static_cast<std::size_t>(std::countr_zero(open));
       side_tests_ += span_[id].count;
       switch (bsp::classify(points(id), planes[j], eps)) {

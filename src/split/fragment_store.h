@@ -8,8 +8,8 @@
 // span to the next fragment with as many vertices (up to kReusedSpan), so the arrays hold about the
 // fragments alive, not every fragment the build ever made, and nothing is allocated per fragment.
 // Ids and spans are reused in a fixed order: a build stays deterministic. The arrays give their
-// memory back to the system when freed (PageAllocator), so a finished task's store does not stay
-// resident until the build ends.
+// memory back to the system when freed (PageAllocator): the main store's old arrays as soon as it
+// is compacted, every store's as soon as freeze() has packed its fragments.
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -44,6 +44,7 @@ class FragmentStore {
   static constexpr std::size_t kGrowthRoom = 2;
   // Planes count_sides tests in one pass: their components and counts stay in L1 beside the loop.
   static constexpr std::size_t kPlaneBlock = 32;
+  static_assert(kPlaneBlock <= 32 && kPlaneBlock % 2 == 0, "a bit per plane in a 32-bit mask, planes in pairs");
 
   // Texture coordinates are kept only when `tex_coords` (some input vertex has non-zero ones).
   FragmentStore() = default;
@@ -86,7 +87,8 @@ class FragmentStore {
   // The point-against-plane tests classify() has made since the store was made (BuildStats).
   std::uint64_t side_tests() const { return side_tests_; }
   SideCounts count_sides(std::span<const std::uint32_t> ids, const Plane& p, double eps) const;
-  // count_sides for several planes in one pass over the fragments, out[j] for planes[j]: each
+  // count_sides for several planes in one pass over the fragments, added to out[j] for planes[j]
+  // (out has planes.size() entries, zeroed for a fresh count): each
   // fragment's sphere is read once and tested against a block of planes held as arrays of their
   // components, two planes per SSE2 instruction (the x86-64 baseline; scalar elsewhere), without a
   // branch; only a plane the sphere straddles takes the per-vertex path. The same operations in

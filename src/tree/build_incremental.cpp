@@ -139,7 +139,9 @@ void shuffle(std::vector<std::uint32_t>& ids, std::uint64_t seed) {
 void build_incremental(TreeDraft& tree, std::vector<std::uint32_t> ids, Splitter&, const BuildOptions& options) {
   if (options.order == InsertOrder::Shuffled) shuffle(ids, options.order_seed);
   IncrementalBuilder builder(tree);
+  const std::uint64_t tests = tree.store.side_tests();
   for (auto id : ids) builder.insert(id);
+  tree.stats.side_tests += tree.store.side_tests() - tests;  // every one of them a descent's classification
   builder.freeze();
 }
 

@@ -55,8 +55,8 @@ void pack(const TreeDraft& d, FragmentArray& out) {
 }  // namespace
 
 // Everything but the fragments is converted first, and what only the build needed is dropped from
-// the store before the fragments are packed, so the peak (store and packed copy both whole) holds
-// as little else as it can.
+// the stores before the fragments are packed, so the peak (stores and packed copy both whole)
+// holds as little else as it can.
 Tree freeze(TreeDraft&& draft) {
   renumber_planes(draft);
   Tree tree;

@@ -1,8 +1,8 @@
 #pragma once
 // A tree while it is being built: nodes carry their fragment counts, and fragments are ids in the
-// draft's own FragmentStore, where builders split and add them. Every builder lays its nodes out in
-// pre-order (front child first) with the fragment ids in node order; freeze() then packs the draft
-// into a Tree.
+// draft's own FragmentStore, where builders split and add them (or, once a build's tasks are laid
+// out, in the stores the tasks built in). Every builder lays its nodes out in pre-order (front
+// child first) with the fragment ids in node order; freeze() then packs the draft into a Tree.
 #include <cstdint>
 #include <vector>
 
@@ -29,7 +29,7 @@ struct TreeDraft {
   PageVector<DraftNode> nodes;
   PlanePool planes;
   FragmentStore store;                       // the fragments, and during the build every pending one
-  std::vector<std::uint32_t> fragments;      // ids in `store`, node after node
+  std::vector<std::uint32_t> fragments;      // ids in `store` (or task_stores), node after node
   std::vector<std::uint32_t> fragment_plane;  // parallel to `fragments`
   // The stores of subtrees built as tasks (tree/build.cpp), whose fragments stay where their task
   // made them until freeze() packs them: fragment i is an id in task_stores[fragment_store[i] - 1],
@@ -50,7 +50,7 @@ struct TreeDraft {
 // traversal (which visits nodes near their stored order) reads the pool front to back instead of at
 // random, and drops planes no node or fragment uses; orientation and sharing are kept (a node and
 // a fragment on one plane still have indices equal up to the low bit). Packs the fragments into
-// flat arrays in node order and releases the store.
+// flat arrays in node order and releases the stores.
 Tree freeze(TreeDraft&& draft);
 
 }  // namespace bsp

@@ -21,7 +21,7 @@ TreeBytes Tree::bytes_by_part() const {
   TreeBytes b;
   b.positions = fragments.position_bytes();
   b.attributes = fragments.attribute_bytes();
-  b.fragments = fragments.bytes() - b.positions - b.attributes + fragment_plane.size() * sizeof(std::uint32_t);
+  b.fragments = fragments.record_bytes() + fragment_plane.size() * sizeof(std::uint32_t);
   b.nodes = nodes.size() * sizeof(Node);
   b.planes = planes.bytes();
   return b;

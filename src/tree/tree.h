@@ -78,7 +78,8 @@ struct BuildStats {
   // Point-against-plane tests that classified fragments (a bounding-sphere centre, then each
   // vertex when the sphere straddles the plane), all of them and those inside choose: the unit of
   // the heuristics' and the partitioning's work, for a rate against the machine's (bench/roofline.h).
-  // Deterministic. Splitting's own vertex distances are not counted.
+  // Deterministic. Not counted: splitting's own vertex distances and the leafy shape's convexity
+  // checks (leaf_cell.h), which test points without classifying a fragment.
   std::uint64_t side_tests = 0;
   std::uint64_t choose_side_tests = 0;
 };
@@ -89,7 +90,7 @@ struct TreeBytes {
   std::size_t attributes = 0;  // texture coordinates: 8 bytes per vertex, only when the input has any
   std::size_t fragments = 0;   // per fragment: its vertex offset, source and supporting plane
   std::size_t nodes = 0;
-  std::size_t planes = 0;  // the pool: planes and the hash index that shares them
+  std::size_t planes = 0;  // the pooled planes
   std::size_t total() const { return positions + attributes + fragments + nodes + planes; }
 };
 

@@ -4,8 +4,8 @@
 # count too, a run is repeatable, which is how CI runs it.
 # TARGET is mesh_reader, polygon_split, tree_build or report; the binaries come from the `fuzz`
 # preset (cmake --preset fuzz && cmake --build --preset fuzz). New inputs that reach new coverage
-# go to build-fuzz/corpus/TARGET (a seeded run's to a temporary directory), not into the committed corpus; a crash leaves its input in
-# build-fuzz/artifacts/ and fails the script.
+# go to build-fuzz/corpus/TARGET (a seeded run's to a temporary directory), not into the committed
+# corpus; a crash leaves its input in build-fuzz/artifacts/ and fails the script.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 target=${1:?usage: run.sh TARGET SECONDS [RUNS]}
