@@ -68,7 +68,6 @@ double read_rate(const std::vector<double>& data, double& sink) {
 Roofline measure_roofline(int repeats) {
   Roofline r;
   const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  r.fma_instructions = avx2 ? "avx2+fma" : "sse2";
   std::vector<double> data(kStreamBytes / sizeof(double), 1.0);  // written once: no page faults timed
   double sink = 0;
   std::vector<double> fma, read;

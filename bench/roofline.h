@@ -8,8 +8,8 @@
 //  - memory: the read bandwidth of one core streaming an array 8 times the size of the last-level
 //    cache, over the bytes a test reads. A test that reads its own point (a vertex: 24 bytes of
 //    double position, as the partition's and the per-vertex paths do) is bound at bandwidth / 24;
-//    the scorers' batched tests read one bounding sphere and id (40 bytes) per fragment for k
-//    planes, 40 / k bytes per test, so their memory bound is k / 40 of the bandwidth.
+//    the scorers' batched tests read one bounding sphere and id (36 bytes) per fragment for k
+//    planes, 36 / k bytes per test, so their memory bound is k / 36 of the bandwidth.
 // A test is a compare after the multiply-adds, so neither bound counts the branch that follows it.
 // The compute bound holds for every test; which bound binds depends on the bytes per test.
 #include <cstddef>
@@ -19,15 +19,12 @@ namespace bsp::bench {
 struct Roofline {
   double fma_per_second = 0;         // double-precision FMAs, all vector lanes counted
   double read_bytes_per_second = 0;  // streaming reads from memory
-  const char* fma_instructions = "";  // "avx2+fma" or "sse2"
 
   static constexpr double kFmaPerTest = 3;
   static constexpr double kVertexBytes = 24;
   double compute_tests_per_second() const { return fma_per_second / kFmaPerTest; }
-  // Tests per second when each reads `bytes_per_test` from memory (kVertexBytes: its own vertex).
-  double memory_tests_per_second(double bytes_per_test = kVertexBytes) const {
-    return read_bytes_per_second / bytes_per_test;
-  }
+  // Tests per second when each reads its own vertex from memory.
+  double memory_tests_per_second() const { return read_bytes_per_second / kVertexBytes; }
 };
 
 // The median of `repeats` timings of each kernel.
