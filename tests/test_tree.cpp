@@ -93,6 +93,27 @@ TEST(TreeInvariants, CatchACorruptedTree) {
   Tree shuffled = build(scene.polygons, "random");
   std::swap(shuffled.nodes[1].first, shuffled.nodes[2].first);
   EXPECT_FALSE(check_tree_invariants(shuffled, scene.polygons).ok());
+  // The back child stored before the front one: every fragment still where it belongs, but not in
+  // the layout the traversal's sweep needs. Squares at z = 1, 2, 0: the root (z = 1) has the z = 2
+  // square in front and the z = 0 one behind, stored as nodes 1 and 2 with fragments 1 and 2.
+  std::vector<Polygon> squares = stacked_squares(3);
+  std::rotate(squares.begin(), squares.begin() + 1, squares.end());
+  Tree reordered = build(squares, "first");
+  ASSERT_EQ(reordered.nodes.size(), 3u);
+  ASSERT_EQ(reordered.nodes[0].front, 1u);
+  ASSERT_EQ(reordered.nodes[0].back, 2u);
+  ASSERT_TRUE(check_tree_invariants(reordered, squares).ok());
+  std::swap(reordered.nodes[1], reordered.nodes[2]);
+  std::swap(reordered.nodes[1].first, reordered.nodes[2].first);
+  reordered.nodes[0].front = 2;
+  reordered.nodes[0].back = 1;
+  FragmentArray swapped;
+  for (std::uint32_t i : {0u, 2u, 1u}) swapped.push_back(reordered.fragments[i].polygon());
+  reordered.fragments = swapped;
+  std::swap(reordered.fragment_plane[1], reordered.fragment_plane[2]);
+  const InvariantReport layout = check_tree_invariants(reordered, squares);
+  ASSERT_EQ(layout.violations, 2u);  // nodes 2 and 1, each out of place
+  for (const std::string& p : layout.first_problems) EXPECT_NE(p.find("out of pre-order"), std::string::npos) << p;
 }
 
 TEST(TreeInvariants, CatchADegenerateFragment) {
@@ -117,6 +138,59 @@ TEST(TreeInvariants, CatchADegenerateFragment) {
   bool named = false;
   for (const auto& p : s.first_problems) named |= p.find("sliver") != std::string::npos;
   EXPECT_TRUE(named);
+}
+
+// The full order comes from a sweep over the stored nodes (traverse.h); the depth-first walk the
+// culled traversal uses, told to enter both sides everywhere, is the definition it must match,
+// fragment for fragment, with the same counters: every shape, builders that lay nodes out
+// differently (recursive, incremental), eyes inside and outside the scene, both orders.
+TEST(Traversal, TheSweepGivesTheDepthFirstWalksOrderExactly) {
+  const Scene scene = make_scene("cyclic-overlap", {{"n", "300"}, {"seed", "5"}});
+  const auto both = [](const Plane&, TraversalCounters&) { return detail::Visit::Both; };
+  int compared = 0;
+  for (const char* heuristic : {"first", "random", "crystal"})
+    for (Shape shape : {Shape::Strict, Shape::Coarse, Shape::Leafy})
+      for (bool incremental : {false, true}) {
+        if (incremental && (shape != Shape::Strict || std::string_view(heuristic) != "first")) continue;
+        const Tree tree = build(scene.polygons, heuristic, {.shape = shape, .incremental = incremental});
+        for (const Vec3& eye : {Vec3{-3, 0.5, 0.5}, Vec3{0.5, 0.5, 0.5}, Vec3{0.2, 0.9, 0.4}, Vec3{4, 5, -6}})
+          for (Order order : {Order::BackToFront, Order::FrontToBack}) {
+            TraversalCounters swept;
+            const auto sweep = visibility_order(tree, eye, order, &swept);
+            std::vector<std::uint32_t> walked;
+            auto collect = [&](std::uint32_t f) { walked.push_back(f); };
+            const TraversalCounters walk = detail::walk(tree, eye, order, collect, both);
+            ASSERT_EQ(sweep, walked) << heuristic << " " << shape_name(shape) << (incremental ? " incremental" : "");
+            EXPECT_EQ(swept.nodes_visited, walk.nodes_visited);
+            EXPECT_EQ(swept.plane_evals, walk.plane_evals);
+            EXPECT_EQ(swept.fragments_emitted, walk.fragments_emitted);
+            ++compared;
+          }
+      }
+  EXPECT_EQ(compared, 80);
+}
+
+// A tree whose nodes are not in pre-order (children swapped by hand, as the checkers' tests corrupt
+// trees) is refused by the sweep before it writes outside the output, and ordered by the walk.
+TEST(Traversal, ATreeOutOfPreOrderIsWalkedNotSwept) {
+  const Scene scene = make_scene("random-triangles", {{"n", "300"}, {"seed", "2"}});
+  const auto both = [](const Plane&, TraversalCounters&) { return detail::Visit::Both; };
+  const Tree tree = build(scene.polygons, "crystal");
+  int swapped = 0;
+  for (std::uint32_t i = 0; i < tree.nodes.size() && swapped < 6; ++i) {
+    if (tree.nodes[i].front == kNull || tree.nodes[i].back == kNull) continue;
+    Tree broken = tree;
+    std::swap(broken.nodes[i].front, broken.nodes[i].back);
+    ++swapped;
+    const Vec3 eye{0.3, -2, 0.7};
+    std::vector<std::uint32_t> out(broken.fragments.size());
+    EXPECT_FALSE(detail::sweep_order(broken, eye, Order::BackToFront, out.data())) << "node " << i;
+    std::vector<std::uint32_t> walked;
+    auto collect = [&](std::uint32_t f) { walked.push_back(f); };
+    detail::walk(broken, eye, Order::BackToFront, collect, both);
+    EXPECT_EQ(visibility_order(broken, eye, Order::BackToFront), walked) << "node " << i;
+  }
+  EXPECT_EQ(swapped, 6);
 }
 
 TEST(Traversal, FrontToBackIsTheReverseOfBackToFront) {

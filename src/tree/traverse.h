@@ -1,7 +1,16 @@
 #pragma once
 // Visibility orders from an eye point [Fuchs1980]: at each node, the subtree on the far
-// side of the plane first, then the node's own fragments, then the near side. Runs on an explicit
-// stack, so it handles trees as deep as the input is long.
+// side of the plane first, then the node's own fragments, then the near side.
+//
+// The full order is computed by one sweep over the nodes in their stored pre-order, not by a
+// depth-first walk: a walk jumps to the far child at every other node, and each jump waits on a
+// cache miss whose address needed the node before it (43 ns a node at 10^5 and 10^6 nodes, 19 ns
+// in cache). The sweep reads the nodes front to back and never waits on one to find the next; it
+// places each node's fragments directly, since a subtree's fragments are contiguous (pre-order):
+// its slice of the output is known from where the slice starts and how many fragments its far
+// child's subtree holds, and a small stack keeps the slices of back subtrees still ahead. The
+// culled traversal (traverse_culled.h), which skips subtrees, walks. Neither recurses, so both
+// handle trees as deep as the input is long.
 //
 // Coarse leaves hold a convex set C (each fragment in front of or on the others' planes). A fragment
 // whose plane has the eye in front of it occludes nothing in C: the segment from the eye to any
@@ -12,6 +21,7 @@
 // ones ("draw culled back faces last"); front-to-back is the reverse. Validated against Embree like
 // every other order.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "tree/tree.h"
@@ -32,7 +42,7 @@ namespace detail {
 
 // Emits a coarse leaf's fragments in the order described above.
 template <class Emit>
-void emit_convex_leaf(const Tree& tree, std::uint32_t node, const Vec3& eye, Order order, Emit& emit,
+void emit_convex_leaf(const Tree& tree, std::uint32_t node, const Vec3& eye, Order order, Emit&& emit,
                       TraversalCounters& c) {
   const double eps = tree.tol.plane_eps;
   const FragmentRange r = tree.fragments_of(node);
@@ -54,7 +64,8 @@ void emit_convex_leaf(const Tree& tree, std::uint32_t node, const Vec3& eye, Ord
 // fragments between them), or only one, skipping the other and the node's fragments.
 enum class Visit : std::uint8_t { Both, FrontOnly, BackOnly };
 
-// The walk shared by the full and the culled traversal (traverse_culled.h). `rule(plane, counters)`
+// The depth-first walk of the culled traversal (traverse_culled.h). With a rule that always says
+// Both it gives the full order too (the tests hold the sweep to it). `rule(plane, counters)`
 // says which subtrees of an internal node to enter, counting any plane evaluations it makes.
 template <class Emit, class Rule>
 TraversalCounters walk(const Tree& tree, const Vec3& eye, Order order, Emit& emit, Rule&& rule) {
@@ -104,12 +115,23 @@ TraversalCounters walk(const Tree& tree, const Vec3& eye, Order order, Emit& emi
   return c;
 }
 
+// Writes the full order into out[0, fragments) by the sweep described above, or returns nothing
+// (having written only inside out[0, fragments)) when the nodes are not in pre-order.
+std::optional<TraversalCounters> sweep_order(const Tree& tree, const Vec3& eye, Order order, std::uint32_t* out);
+
 }  // namespace detail
+
+// Fills `out` with every fragment index exactly once, in the requested order. A caller that keeps
+// `out` from one view to the next (a renderer's draw list) allocates nothing after the first.
+TraversalCounters visibility_order(const Tree& tree, const Vec3& eye, Order order, std::vector<std::uint32_t>& out);
 
 // Calls emit(fragment index) for every fragment exactly once, in the requested order.
 template <class Emit>
 TraversalCounters traverse(const Tree& tree, const Vec3& eye, Order order, Emit&& emit) {
-  return detail::walk(tree, eye, order, emit, [](const Plane&, TraversalCounters&) { return detail::Visit::Both; });
+  std::vector<std::uint32_t> out;
+  const TraversalCounters c = visibility_order(tree, eye, order, out);
+  for (const std::uint32_t i : out) emit(i);
+  return c;
 }
 
 std::vector<std::uint32_t> visibility_order(const Tree& tree, const Vec3& eye, Order order,

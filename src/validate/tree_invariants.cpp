@@ -27,12 +27,15 @@ class Checker {
     std::vector<std::uint32_t> path;  // oriented planes: the cell is in front of each
     struct Step { std::uint32_t node; std::uint32_t depth; std::uint32_t plane_from_parent; };
     std::vector<Step> stack;
+    std::uint32_t reached = 0;
     if (n) stack.push_back({0, 0, kNull});
     while (!stack.empty()) {
       const Step s = stack.back();
       stack.pop_back();
       if (s.node >= n) { fail("child index out of range"); continue; }
       if (seen[s.node]++) { fail("node " + std::to_string(s.node) + " reached twice"); continue; }
+      // Popping the front child before the back one visits the nodes in pre-order, front first.
+      if (s.node != reached++) fail("node " + std::to_string(s.node) + " stored out of pre-order");
       path.resize(s.depth);
       if (s.plane_from_parent != kNull) path.push_back(s.plane_from_parent);
       const Node& node = tree_.nodes[s.node];

@@ -1,6 +1,7 @@
 #pragma once
 // A reusable checker of what every BSP tree must satisfy, whatever heuristic built it:
-//  1. structure: every node is reached from the root exactly once; fragment ranges partition the
+//  1. structure: every node is reached from the root exactly once, in the stored order (pre-order,
+//     front child first: the traversal's sweep relies on it); fragment ranges partition the
 //     fragment array;
 //  2. separation: every fragment in a node's front subtree lies in front of or on the node's plane
 //     (within plane_eps), every one in its back subtree behind or on it;
