@@ -28,7 +28,8 @@
 //       emitted; counters: sort_seconds (std::sort of as many (depth, id) pairs as one view emits),
 //       traverse_vs_sort (median time per view / that), traverse_vs_embree_rays (the median over
 //       runs of each run's time per view / Embree's 64 x 64 primary rays per view timed right after
-//       it: a paired reference of the same character, pointer-chasing traversal of a hierarchy)
+//       it: a paired reference that drifts with the machine as the traversal does, both reading a
+//       hierarchy from memory)
 // The ratios to medians come from the same benchmark, minutes apart at most; the paired ratio
 // also cancels a machine whose speed for such code drifts within a run (gate-timing.md).
 //
@@ -63,8 +64,8 @@ namespace {
 constexpr double kDefaultSize = 0.1;  // random-triangles' default `size`
 constexpr double kDefaultN = 1000;    // the N at which it applies unchanged
 constexpr int kReferenceRepeats = 5;  // timed runs of each reference; their median is used
-// Primary rays per view side for the traversal's paired reference: 64^2 rays per view take a third
-// to a half of a back-to-front traversal of 10^5 fragments, long enough to time on its own.
+// Primary rays per view side for the traversal's paired reference: 64^2 rays per view take about
+// half as long as a back-to-front traversal of 10^5 fragments, long enough to time on its own.
 constexpr int kRayGrid = 64;
 // Builds of a million polygons take seconds, so Google Benchmark's minimum time would allow one
 // run, and a median of one is no median: from this size on, builds run a fixed number of times.

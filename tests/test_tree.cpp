@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <numeric>
+#include <optional>
 
 #include "catalog.h"
 #include "common/errors.h"
@@ -140,13 +141,34 @@ TEST(TreeInvariants, CatchADegenerateFragment) {
   EXPECT_TRUE(named);
 }
 
+// The walk's order, the definition the sweep must match.
+std::vector<std::uint32_t> walked_order(const Tree& tree, const Vec3& eye, Order order, TraversalCounters* counters = nullptr) {
+  std::vector<std::uint32_t> walked;
+  auto collect = [&](std::uint32_t f) { walked.push_back(f); };
+  const TraversalCounters c =
+      detail::walk(tree, eye, order, collect, [](const Plane&, TraversalCounters&) { return detail::Visit::Both; });
+  if (counters) *counters = c;
+  return walked;
+}
+
+// The sweep's own order (never the walk it falls back to), in a buffer with guard words after
+// the output that must come back untouched.
+constexpr std::uint32_t kGuard = 0xdeadbeefu;
+constexpr std::size_t kGuards = 16;
+std::optional<TraversalCounters> swept_order(const Tree& tree, const Vec3& eye, Order order, std::vector<std::uint32_t>& out) {
+  out.assign(tree.fragments.size() + kGuards, kGuard);
+  const auto c = detail::sweep_order(tree, eye, order, out.data());
+  for (std::size_t i = tree.fragments.size(); i < out.size(); ++i) EXPECT_EQ(out[i], kGuard) << "wrote past the output";
+  out.resize(tree.fragments.size());
+  return c;
+}
+
 // The full order comes from a sweep over the stored nodes (traverse.h); the depth-first walk the
 // culled traversal uses, told to enter both sides everywhere, is the definition it must match,
 // fragment for fragment, with the same counters: every shape, builders that lay nodes out
 // differently (recursive, incremental), eyes inside and outside the scene, both orders.
 TEST(Traversal, TheSweepGivesTheDepthFirstWalksOrderExactly) {
   const Scene scene = make_scene("cyclic-overlap", {{"n", "300"}, {"seed", "5"}});
-  const auto both = [](const Plane&, TraversalCounters&) { return detail::Visit::Both; };
   int compared = 0;
   for (const char* heuristic : {"first", "random", "crystal"})
     for (Shape shape : {Shape::Strict, Shape::Coarse, Shape::Leafy})
@@ -155,42 +177,73 @@ TEST(Traversal, TheSweepGivesTheDepthFirstWalksOrderExactly) {
         const Tree tree = build(scene.polygons, heuristic, {.shape = shape, .incremental = incremental});
         for (const Vec3& eye : {Vec3{-3, 0.5, 0.5}, Vec3{0.5, 0.5, 0.5}, Vec3{0.2, 0.9, 0.4}, Vec3{4, 5, -6}})
           for (Order order : {Order::BackToFront, Order::FrontToBack}) {
-            TraversalCounters swept;
-            const auto sweep = visibility_order(tree, eye, order, &swept);
-            std::vector<std::uint32_t> walked;
-            auto collect = [&](std::uint32_t f) { walked.push_back(f); };
-            const TraversalCounters walk = detail::walk(tree, eye, order, collect, both);
-            ASSERT_EQ(sweep, walked) << heuristic << " " << shape_name(shape) << (incremental ? " incremental" : "");
-            EXPECT_EQ(swept.nodes_visited, walk.nodes_visited);
-            EXPECT_EQ(swept.plane_evals, walk.plane_evals);
-            EXPECT_EQ(swept.fragments_emitted, walk.fragments_emitted);
+            std::vector<std::uint32_t> sweep;
+            const auto swept = swept_order(tree, eye, order, sweep);
+            ASSERT_TRUE(swept) << "a built tree refused: " << heuristic << " " << shape_name(shape);
+            TraversalCounters walk;
+            ASSERT_EQ(sweep, walked_order(tree, eye, order, &walk))
+                << heuristic << " " << shape_name(shape) << (incremental ? " incremental" : "");
+            EXPECT_EQ(swept->nodes_visited, walk.nodes_visited);
+            EXPECT_EQ(swept->plane_evals, walk.plane_evals);
+            EXPECT_EQ(swept->fragments_emitted, walk.fragments_emitted);
             ++compared;
           }
       }
   EXPECT_EQ(compared, 80);
 }
 
-// A tree whose nodes are not in pre-order (children swapped by hand, as the checkers' tests corrupt
-// trees) is refused by the sweep before it writes outside the output, and ordered by the walk.
+// A comb: each node on the path of front children has a back child too, so 300 back subtrees wait
+// at once (more than the sweep's stack starts with).
+TEST(Traversal, TheSweepHoldsHundredsOfPendingBackSubtrees) {
+  std::vector<Polygon> squares;
+  const auto all = stacked_squares(601);
+  for (std::size_t k = 0; k < 300; ++k) {
+    squares.push_back(all[2 * k + 2]);  // the path: z = 2, 4, ...
+    squares.push_back(all[2 * k + 1]);  // each one's back child: z = 1, 3, ...
+  }
+  const Tree tree = build(squares, "first");
+  ASSERT_EQ(tree.nodes.size(), 600u);
+  std::uint32_t combs = 0;
+  for (std::uint32_t n = 0; n != kNull; n = tree.nodes[n].front) combs += tree.nodes[n].back != kNull;
+  ASSERT_EQ(combs, 300u);
+  for (Order order : {Order::BackToFront, Order::FrontToBack}) {
+    std::vector<std::uint32_t> sweep;
+    ASSERT_TRUE(swept_order(tree, {0.5, 0.5, 250.5}, order, sweep));
+    EXPECT_EQ(sweep, walked_order(tree, {0.5, 0.5, 250.5}, order));
+  }
+}
+
+// A tree not in pre-order (as the checkers' tests corrupt trees by hand: children swapped, a
+// child index pointing back or past the end, fragment ranges running backwards) is refused by the
+// sweep without a write past its output, and visibility_order falls back to the walk.
 TEST(Traversal, ATreeOutOfPreOrderIsWalkedNotSwept) {
   const Scene scene = make_scene("random-triangles", {{"n", "300"}, {"seed", "2"}});
-  const auto both = [](const Plane&, TraversalCounters&) { return detail::Visit::Both; };
   const Tree tree = build(scene.polygons, "crystal");
-  int swapped = 0;
-  for (std::uint32_t i = 0; i < tree.nodes.size() && swapped < 6; ++i) {
+  const Vec3 eye{0.3, -2, 0.7};
+  const auto n = static_cast<std::uint32_t>(tree.nodes.size());
+  std::vector<Tree> broken;
+  for (std::uint32_t i = 0; i < n && broken.size() < 6; ++i) {
     if (tree.nodes[i].front == kNull || tree.nodes[i].back == kNull) continue;
-    Tree broken = tree;
-    std::swap(broken.nodes[i].front, broken.nodes[i].back);
-    ++swapped;
-    const Vec3 eye{0.3, -2, 0.7};
-    std::vector<std::uint32_t> out(broken.fragments.size());
-    EXPECT_FALSE(detail::sweep_order(broken, eye, Order::BackToFront, out.data())) << "node " << i;
-    std::vector<std::uint32_t> walked;
-    auto collect = [&](std::uint32_t f) { walked.push_back(f); };
-    detail::walk(broken, eye, Order::BackToFront, collect, both);
-    EXPECT_EQ(visibility_order(broken, eye, Order::BackToFront), walked) << "node " << i;
+    broken.push_back(tree);
+    std::swap(broken.back().nodes[i].front, broken.back().nodes[i].back);
   }
-  EXPECT_EQ(swapped, 6);
+  ASSERT_EQ(broken.size(), 6u);
+  const auto first_with_back = static_cast<std::uint32_t>(
+      std::find_if(tree.nodes.begin(), tree.nodes.end(), [](const Node& x) { return x.back != kNull; }) - tree.nodes.begin());
+  ASSERT_LT(first_with_back, n);
+  broken.push_back(tree);
+  broken.back().nodes[first_with_back].back = 0;  // a cycle
+  broken.push_back(tree);
+  broken.back().nodes[first_with_back].back = n + 5;  // past the end
+  broken.push_back(tree);
+  std::swap(broken.back().nodes[1].first, broken.back().nodes[2].first);  // fragments running backwards
+  for (std::size_t k = 0; k < broken.size(); ++k) {
+    std::vector<std::uint32_t> sweep;
+    EXPECT_FALSE(swept_order(broken[k], eye, Order::BackToFront, sweep)) << "corruption " << k;
+    if (k != 6 && k != 7) {  // not the cycle or the index past the end: the walk needs neither
+      EXPECT_EQ(visibility_order(broken[k], eye, Order::BackToFront), walked_order(broken[k], eye, Order::BackToFront));
+    }
+  }
 }
 
 TEST(Traversal, FrontToBackIsTheReverseOfBackToFront) {

@@ -86,7 +86,7 @@ std::optional<TraversalCounters> sweep_order(const Tree& tree, const Vec3& eye, 
     top -= pop;
   }
   // Every subtree placed, every fragment in one: then each fragment was written exactly once.
-  if (n > 0 && (top != 0 || cur.node != kNull)) return std::nullopt;
+  if (n == 0 ? total != 0 : (top != 0 || cur.node != kNull)) return std::nullopt;
   TraversalCounters c;
   c.nodes_visited = n;
   c.plane_evals = (n - leaves) + leaf_evals;
@@ -100,7 +100,8 @@ TraversalCounters visibility_order(const Tree& tree, const Vec3& eye, Order orde
   out.resize(tree.fragments.size());
   if (const auto c = detail::sweep_order(tree, eye, order, out.data())) return *c;
   // A tree not in pre-order: only one a caller rearranged by hand (a test corrupting a tree for a
-  // checker to catch) since every builder lays its nodes out so. The walk defines the order for any.
+  // checker to catch), since every builder lays its nodes out so. The walk orders any tree whose
+  // child indices are in range and acyclic, as it always required.
   out.clear();
   auto collect = [&](std::uint32_t f) { out.push_back(f); };
   return detail::walk(tree, eye, order, collect, [](const Plane&, TraversalCounters&) { return detail::Visit::Both; });
