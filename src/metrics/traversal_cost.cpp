@@ -45,8 +45,9 @@ std::vector<Frustum> metric_views(const Box& box, std::uint32_t count) {
 TraversalCost traversal_cost(const Tree& tree, std::span<const Frustum> views) {
   TraversalCost out;
   if (views.empty() || tree.empty()) return out;
+  std::vector<std::uint32_t> order;  // one list for every view: only the counters are kept
   for (const Frustum& f : views) {
-    const TraversalCounters full = traverse(tree, f.eye, Order::BackToFront, [](std::uint32_t) {});
+    const TraversalCounters full = visibility_order(tree, f.eye, Order::BackToFront, order);
     const TraversalCounters culled = traverse_culled(tree, f, [](std::uint32_t) {});
     out.full_nodes_visited += static_cast<double>(full.nodes_visited);
     out.full_plane_evals += static_cast<double>(full.plane_evals);
