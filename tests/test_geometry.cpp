@@ -6,6 +6,12 @@
 #include "geometry/polytope.h"
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#include "common/page_allocator.h"
 #include "common/rng.h"
 #include "geometry/tolerance.h"
 
@@ -192,4 +198,46 @@ TEST(Split, ACutPointRoundingOntoASharedVertexIsNotRepeated) {
     ASSERT_NEAR(parts, area(neighbour), 1e-12 * area(neighbour)) << trial;
   }
   EXPECT_GT(collapsing, 0);
+}
+
+namespace {
+
+// The "THPeligible" field of the mapping in /proc/self/smaps that holds `address`: whether the
+// kernel may back it with transparent huge pages. Empty when the kernel reports no such field.
+std::optional<bool> huge_page_eligible(const void* address) {
+  std::ifstream smaps("/proc/self/smaps");
+  const auto a = reinterpret_cast<std::uintptr_t>(address);
+  bool inside = false;
+  for (std::string line; std::getline(smaps, line);) {
+    std::uintptr_t begin = 0, end = 0;
+    if (std::sscanf(line.c_str(), "%lx-%lx ", &begin, &end) == 2 && line.find(':') > line.find(' ')) {
+      inside = begin <= a && a < end;
+    } else if (inside && line.rfind("THPeligible:", 0) == 0) {
+      return line.find('1') != std::string::npos;
+    }
+  }
+  return std::nullopt;
+}
+
+std::string huge_page_mode() {
+  std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string mode;
+  std::getline(in, mode);
+  return mode;
+}
+
+}  // namespace
+
+// Only arrays of kHugePageBytes or more are advised: under the "madvise" mode the smaller mapped
+// ones stay in 4 KiB pages.
+TEST(PageAllocator, AdvisesLargeArraysIntoHugePages) {
+  const std::string mode = huge_page_mode();
+  if (mode.find("[never]") != std::string::npos || mode.empty()) GTEST_SKIP() << "transparent huge pages are off";
+  PageVector<double> large(2 * kHugePageBytes / sizeof(double), 1.0);
+  const auto eligible = huge_page_eligible(large.data());
+  if (!eligible) GTEST_SKIP() << "the kernel reports no THPeligible field";
+  EXPECT_TRUE(*eligible);
+  if (mode.find("[madvise]") == std::string::npos) return;
+  PageVector<double> small(kPageAllocationBytes / sizeof(double), 1.0);
+  EXPECT_EQ(huge_page_eligible(small.data()), false);
 }

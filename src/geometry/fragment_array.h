@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "common/page_allocator.h"
 #include "geometry/polygon.h"
 
 namespace bsp {
@@ -80,10 +81,11 @@ class FragmentArray {
  private:
   void start_tex_coords();
 
-  std::vector<Vec3> points_;
-  std::vector<TexCoord> uv_;          // empty, or parallel to points_
-  std::vector<std::uint32_t> start_;  // size() + 1 offsets into points_
-  std::vector<std::uint32_t> source_;
+  // Page-allocated: a million-fragment tree's arrays are mapped in huge pages and unmapped at once.
+  PageVector<Vec3> points_;
+  PageVector<TexCoord> uv_;          // empty, or parallel to points_
+  PageVector<std::uint32_t> start_;  // size() + 1 offsets into points_
+  PageVector<std::uint32_t> source_;
 };
 
 }  // namespace bsp
