@@ -1,0 +1,70 @@
+#pragma once
+// The exact kernel's predicates on grid planes (geometry/grid_plane.h): signs of determinants,
+// decided exactly. A vertex is never stored: it is the point where three planes meet, and the one
+// question asked of it is its side of a fourth plane [Sugihara1989] [BernsteinFussell2009].
+//
+// Notation: plane i is (n_i, d_i) with normal n_i = (a_i, b_i, c_i). N is the 3x3 matrix of rows
+// n_1, n_2, n_3 and M the 4x4 matrix of rows (n_i, d_i), i = 1..4.
+//  - The three planes meet in one point X iff det N != 0, and N X = -(d_1, d_2, d_3).
+//  - By the Schur complement, det M = det N * (n_4 . X + d_4): plane 4's value at X has the sign of
+//    det M * det N. So side_of_vertex needs two determinant signs.
+//
+// Stage 1, the filter. Each determinant is expanded along its first column, each sum taken left to
+// right, in doubles. A term of det_k is a product of k entries, each rounded once on conversion
+// (the entries exceed 53 bits), with k - 1 multiplications and at most 1 + 2 + ... + (k - 1)
+// additions on its way, so [Higham2002 §3.1] the computed value differs from det by at most
+// gamma_m * perm(|A|), gamma_m = m u / (1 - m u), u = 2^-53, with m = 8 for k = 3 and m = 13 for
+// k = 4 (kFilterRoundings). The permanent computed the same way from |entries| is within the same
+// factor of the true one, so |det~ - det| <= gamma_m / (1 - gamma_m) * perm~ <= (m + 1) u (1 - u)
+// perm~, and the threshold fl((m + 1) u * perm~) is at least that. When |det~| exceeds it, det~ has
+// det's sign. When perm~ is 0 every term has a zero entry (integers never round to 0), so det = 0.
+// Nothing underflows (nonzero terms are at least 1) or overflows (below 2^380). Contraction into
+// fused multiply-adds only removes roundings, so the bound holds for any -ffp-contract setting.
+//
+// Stage 2, the fallback: the same expansion in WideInt<7> (448 bits), exact because every partial
+// result fits (kNormalBits = 83, kOffsetBits = 125): det N < 3 * 2 * 2^249 < 2^252; det M's 2x2
+// minors of the columns (c, d) < 2^209, its 3x3 minors < 3 * 2^83 * 2^209 < 2^294, det M < 4 * 2^83
+// * 2^294 < 2^380.
+#include <cstdint>
+
+#include "geometry/grid_plane.h"
+
+namespace bsp {
+
+// How the predicates were decided (best: all by the filter).
+struct PredicateCounters {
+  std::uint64_t filtered = 0;  // decided by the floating-point filter
+  std::uint64_t exact = 0;     // the filter could not decide; decided in wide integers
+  void add(const PredicateCounters& o) {
+    filtered += o.filtered;
+    exact += o.exact;
+  }
+};
+
+// Rounding errors on a term's path in a determinant of order 3 and 4 (see above).
+inline constexpr int kFilterRoundings3 = 8;
+inline constexpr int kFilterRoundings4 = 13;
+
+// Sign of det N: nonzero iff the three planes meet in exactly one point.
+int normals_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, PredicateCounters& counters);
+// Sign of det M.
+int planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4,
+                PredicateCounters& counters);
+// The side of p4 on which the point where p1, p2 and p3 meet lies: +1 front, -1 behind, 0 on it.
+// The three must meet in one point (normals_sign != 0); for three that do not, 0.
+int side_of_vertex(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4,
+                   PredicateCounters& counters);
+
+// The stages on their own, for tests: a filter result is `decided` only when its bound allows.
+namespace detail {
+struct MaybeSign {
+  bool decided = false;
+  int sign = 0;
+};
+MaybeSign filtered_normals_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3);
+MaybeSign filtered_planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4);
+int exact_normals_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3);
+int exact_planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4);
+}  // namespace detail
+
+}  // namespace bsp

@@ -1,0 +1,352 @@
+// The exact kernel's grid, planes and predicates against GMP's integers: snapping stays within its
+// bound at the grid's limits, coefficients stay within theirs, and every sign the predicates give
+// (the filter's and the fallback's) is GMP's, on random planes at the limits and on degenerate ones
+// (four planes through one point, nearly parallel planes, grazing planes).
+#include <gmp.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "common/rng.h"
+#include "geometry/exact_predicates.h"
+#include "geometry/grid.h"
+#include "geometry/grid_plane.h"
+#include "geometry/wide_int.h"
+
+using namespace bsp;
+
+namespace {
+
+// An mpz_t that frees itself.
+struct Mpz {
+  mpz_t v;
+  Mpz() { mpz_init(v); }
+  explicit Mpz(Int128 x) : Mpz() {
+    const bool negative = x < 0;
+    const auto m = static_cast<unsigned __int128>(negative ? -x : x);
+    mpz_set_ui(v, static_cast<unsigned long>(m >> 64));
+    mpz_mul_2exp(v, v, 64);
+    mpz_add_ui(v, v, static_cast<unsigned long>(static_cast<std::uint64_t>(m)));
+    if (negative) mpz_neg(v, v);
+  }
+  ~Mpz() { mpz_clear(v); }
+  Mpz(const Mpz&) = delete;
+  Mpz& operator=(const Mpz&) = delete;
+};
+
+// GMP's determinant of a square matrix of at most 4 rows, by Laplace expansion along the first
+// column, each minor (a set of rows over the last columns) computed once.
+class GmpMatrix {
+ public:
+  explicit GmpMatrix(const std::vector<std::vector<Int128>>& rows) : n_(static_cast<int>(rows.size())) {
+    for (int i = 0; i < n_; ++i)
+      for (int j = 0; j < n_; ++j) {
+        Mpz x(rows[i][j]);
+        mpz_init_set(m_[i][j], x.v);
+      }
+    for (auto& v : minor_) mpz_init(v);
+  }
+  ~GmpMatrix() {
+    for (int i = 0; i < n_; ++i)
+      for (int j = 0; j < n_; ++j) mpz_clear(m_[i][j]);
+    for (auto& v : minor_) mpz_clear(v);
+  }
+  GmpMatrix(const GmpMatrix&) = delete;
+  GmpMatrix& operator=(const GmpMatrix&) = delete;
+
+  int sign() { return mpz_sgn(det((1u << n_) - 1)); }
+
+ private:
+  // The minor of the rows in `mask` over the last popcount(mask) columns.
+  const mpz_t& det(unsigned mask) {
+    mpz_t& out = minor_[mask];
+    if (done_[mask]) return out;
+    done_[mask] = true;
+    const int column = n_ - __builtin_popcount(mask);
+    mpz_set_ui(out, 0);
+    Mpz term;
+    int parity = 0;
+    for (int r = 0; r < n_; ++r) {
+      if (!(mask & (1u << r))) continue;
+      const unsigned rest = mask & ~(1u << r);
+      if (rest == 0) mpz_set(term.v, m_[r][column]);
+      else mpz_mul(term.v, m_[r][column], det(rest));
+      if (parity++ % 2 == 0) mpz_add(out, out, term.v);
+      else mpz_sub(out, out, term.v);
+    }
+    return out;
+  }
+
+  int n_;
+  mpz_t m_[4][4];
+  mpz_t minor_[16];
+  bool done_[16] = {};
+};
+
+int gmp_sign(const std::vector<std::vector<Int128>>& m) { return GmpMatrix(m).sign(); }
+
+int gmp_normals_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3) {
+  return gmp_sign({{p1.a, p1.b, p1.c}, {p2.a, p2.b, p2.c}, {p3.a, p3.b, p3.c}});
+}
+
+int gmp_planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4) {
+  return gmp_sign({{p1.a, p1.b, p1.c, p1.d}, {p2.a, p2.b, p2.c, p2.d}, {p3.a, p3.b, p3.c, p3.d}, {p4.a, p4.b, p4.c, p4.d}});
+}
+
+constexpr std::int64_t kGridMax = (std::int64_t{1} << kGridBits) - 1;
+
+std::int64_t coordinate(Rng& rng, std::int64_t bound) {
+  return static_cast<std::int64_t>(rng.below(2 * static_cast<std::uint64_t>(bound) + 1)) - bound;
+}
+
+GridPoint random_point(Rng& rng, std::int64_t bound = kGridMax) {
+  return {coordinate(rng, bound), coordinate(rng, bound), coordinate(rng, bound)};
+}
+
+GridPoint offset(const GridPoint& p, std::int64_t dx, std::int64_t dy, std::int64_t dz) {
+  return {p.x + dx, p.y + dy, p.z + dz};
+}
+
+GridPoint clamp(const GridPoint& p) {
+  const auto c = [](std::int64_t v) { return std::max(-kGridMax, std::min(kGridMax, v)); };
+  return {c(p.x), c(p.y), c(p.z)};
+}
+
+// A plane through three random points of the grid's extreme range, never degenerate.
+GridPlane random_plane(Rng& rng, std::int64_t bound = kGridMax) {
+  for (;;)
+    if (auto p = plane_through(random_point(rng, bound), random_point(rng, bound), random_point(rng, bound))) return *p;
+}
+
+// A random plane through x (grid point), through x and two random grid points.
+GridPlane plane_through_point(Rng& rng, const GridPoint& x) {
+  for (;;)
+    if (auto p = plane_through(x, random_point(rng), random_point(rng))) return *p;
+}
+
+// The sign of det M in doubles with no bound: what a kernel without the filter would answer.
+int naive_planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4) {
+  const GridPlane* p[] = {&p1, &p2, &p3, &p4};
+  double m[4][4];
+  for (int i = 0; i < 4; ++i) {
+    m[i][0] = static_cast<double>(p[i]->a);
+    m[i][1] = static_cast<double>(p[i]->b);
+    m[i][2] = static_cast<double>(p[i]->c);
+    m[i][3] = static_cast<double>(p[i]->d);
+  }
+  double det = 0;
+  for (int i = 0; i < 4; ++i) {
+    double r[3][3];
+    for (int k = 0, row = 0; k < 4; ++k)
+      if (k != i) {
+        for (int j = 0; j < 3; ++j) r[row][j] = m[k][j + 1];
+        ++row;
+      }
+    const double minor = r[0][0] * (r[1][1] * r[2][2] - r[1][2] * r[2][1]) - r[1][0] * (r[0][1] * r[2][2] - r[0][2] * r[2][1]) +
+                         r[2][0] * (r[0][1] * r[1][2] - r[0][2] * r[1][1]);
+    det += (i % 2 ? -1 : 1) * m[i][0] * minor;
+  }
+  return (det > 0) - (det < 0);
+}
+
+struct Quad {
+  GridPlane p[4];
+};
+
+// The degenerate families the filter cannot decide alone, each generated at the grid's limits.
+std::vector<Quad> adversarial_cases(Rng& rng, std::size_t per_family) {
+  std::vector<Quad> out;
+  for (std::size_t i = 0; i < per_family; ++i) {  // four planes through one point: det M = 0
+    const GridPoint x = random_point(rng);
+    out.push_back({{plane_through_point(rng, x), plane_through_point(rng, x), plane_through_point(rng, x),
+                    plane_through_point(rng, x)}});
+  }
+  for (std::size_t i = 0; i < per_family; ++i) {  // the fourth plane misses the vertex by one step
+    const GridPoint x = random_point(rng, kGridMax - 1);
+    const GridPlane p1 = plane_through_point(rng, x), p2 = plane_through_point(rng, x), p3 = plane_through_point(rng, x);
+    const GridPoint near = offset(x, coordinate(rng, 1), coordinate(rng, 1), coordinate(rng, 1));
+    out.push_back({{p1, p2, p3, plane_through_point(rng, near)}});
+  }
+  for (std::size_t i = 0; i < per_family; ++i) {  // nearly parallel: planes through nearly the same three points
+    const GridPoint a = random_point(rng, kGridMax - 2), b = random_point(rng, kGridMax - 2), c = random_point(rng, kGridMax - 2);
+    Quad q;
+    for (auto& p : q.p) {
+      const auto moved = [&](const GridPoint& g) {
+        return clamp(offset(g, coordinate(rng, 2), coordinate(rng, 2), coordinate(rng, 2)));
+      };
+      for (;;)
+        if (auto plane = plane_through(moved(a), moved(b), moved(c))) {
+          p = *plane;
+          break;
+        }
+    }
+    out.push_back(q);
+  }
+  for (std::size_t i = 0; i < per_family; ++i) {  // a grazing split: the fourth plane shares two planes' line
+    const GridPoint x = random_point(rng), y = random_point(rng);
+    Quad q;
+    for (auto& p : q.p)
+      for (;;)
+        if (auto plane = plane_through(x, y, random_point(rng))) {
+          p = *plane;
+          break;
+        }
+    out.push_back(q);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(WideInt, SumsAndProductsAreGmps) {
+  Rng rng(11);
+  for (int i = 0; i < 20000; ++i) {
+    const auto wide = [&] {
+      const auto hi = static_cast<Int128>(static_cast<std::int64_t>(rng.next()) >> rng.below(64));
+      return (hi << 62) + static_cast<Int128>(rng.next() >> 2);
+    };
+    const Int128 a = wide(), b = wide(), c = wide();
+    // a * b * c needs up to 378 bits; (a * b - c * c) * a and its sum with a stay inside 448.
+    const WideInt<7> w = (WideInt<7>(a) * WideInt<7>(b) - WideInt<7>(c) * WideInt<7>(c)) * WideInt<7>(a) + WideInt<7>(a);
+    Mpz ma(a), mb(b), mc(c), t, u;
+    mpz_mul(t.v, ma.v, mb.v);
+    mpz_mul(u.v, mc.v, mc.v);
+    mpz_sub(t.v, t.v, u.v);
+    mpz_mul(t.v, t.v, ma.v);
+    mpz_add(t.v, t.v, ma.v);
+    ASSERT_EQ(w.sign(), mpz_sgn(t.v)) << i;
+    // The low 64 bits agree too (two's complement of the same integer).
+    ASSERT_EQ(w.limb(0), static_cast<std::uint64_t>(mpz_get_ui(t.v) * (mpz_sgn(t.v) < 0 ? -1ul : 1ul))) << i;
+  }
+}
+
+TEST(Grid, SnappingMovesNoVertexFartherThanItsBound) {
+  Rng rng(3);
+  // Boxes far from the origin, tiny, flat and huge.
+  const Box boxes[] = {{{-1, -1, -1}, {1, 1, 1}},
+                       {{1e6, 1e6, 1e6}, {1e6 + 1e-3, 1e6 + 2e-3, 1e6 + 1e-3}},
+                       {{0, 0, 5}, {10, 20, 5}},
+                       {{-3e12, 7, -1}, {4e12, 9, 1}}};
+  for (const Box& box : boxes) {
+    const Grid grid = Grid::for_box(box);
+    const double bound = kSnapRelative * box.diagonal();
+    EXPECT_LE(grid.step() * std::sqrt(3.0) / 2, bound);
+    EXPECT_GT(grid.step() * std::sqrt(3.0), bound);  // the largest power of two within the bound
+    SnapStats stats;
+    for (int i = 0; i < 10000; ++i) {
+      Vec3 p{rng.uniform(box.lo.x, box.hi.x), rng.uniform(box.lo.y, box.hi.y), rng.uniform(box.lo.z, box.hi.z)};
+      if (i < 8) p = {i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z};
+      const auto q = grid.snap(p);
+      ASSERT_TRUE(q.has_value());
+      for (std::int64_t c : {q->x, q->y, q->z}) ASSERT_LE(std::abs(c), kGridMax);
+      stats.add(length(grid.point(*q) - p));
+    }
+    EXPECT_LE(stats.max_displacement, bound * (1 + 1e-6));
+    // Where doubles are coarser than the grid (the box at 10^6 of size 10^-3), nothing moves.
+    if (&box == &boxes[0]) {
+      EXPECT_GT(stats.moved, 9000u);
+    }
+  }
+}
+
+TEST(Grid, RefusesPointsOutsideItsRange) {
+  const Grid grid = Grid::for_box({{-1, -1, -1}, {1, 1, 1}});
+  EXPECT_FALSE(grid.snap({1e6, 0, 0}).has_value());
+  EXPECT_FALSE(grid.snap({std::nan(""), 0, 0}).has_value());
+  EXPECT_FALSE(grid.snap({0, INFINITY, 0}).has_value());
+}
+
+TEST(GridPlane, CoefficientsStayWithinTheirBoundsAtTheGridsLimits) {
+  // The extreme planes: through corners of the grid's cube.
+  const std::int64_t m = kGridMax;
+  const auto plane = plane_through({-m, -m, -m}, {m, -m, m}, {-m, m, m});
+  ASSERT_TRUE(plane.has_value());
+  Rng rng(5);
+  std::vector<GridPlane> planes{*plane};
+  for (int i = 0; i < 100000; ++i) planes.push_back(random_plane(rng));
+  const Int128 normal_bound = Int128{1} << kNormalBits, offset_bound = Int128{1} << kOffsetBits;
+  Int128 largest_normal = 0;
+  for (const GridPlane& p : planes) {
+    for (Int128 c : {p.a, p.b, p.c}) {
+      ASSERT_LT(c < 0 ? -c : c, normal_bound);
+      largest_normal = std::max(largest_normal, c < 0 ? -c : c);
+    }
+    ASSERT_LT(p.d < 0 ? -p.d : p.d, offset_bound);
+  }
+  // The bound is tight to within a factor of 4: the corners reach past 2^81.
+  EXPECT_GT(largest_normal, Int128{1} << (kNormalBits - 2));
+}
+
+TEST(GridPlane, AnEdgePlaneCutsItsFacesPlaneInTheEdge) {
+  Rng rng(8);
+  for (int i = 0; i < 10000; ++i) {
+    const GridPoint p = random_point(rng), q = random_point(rng), r = random_point(rng);
+    const auto support = plane_through(p, q, r);
+    if (!support) continue;
+    const auto edge = edge_plane(p, q, *support, r);
+    ASSERT_TRUE(edge.has_value());
+    EXPECT_EQ(edge->side(p), 0);
+    EXPECT_EQ(edge->side(q), 0);
+    EXPECT_EQ(edge->side(r), 1);
+    // The edge plane is transverse to the support: the two meet in a line, not a plane.
+    const GridPlane& s = *support;
+    const GridPlane& e = *edge;
+    EXPECT_FALSE(s.a * e.b == s.b * e.a && s.b * e.c == s.c * e.b && s.a * e.c == s.c * e.a);
+  }
+}
+
+// Three planes through a grid point x: the vertex they define is x, so its side of a fourth plane
+// is that plane's value at x, computed directly in 128 bits.
+TEST(ExactPredicates, TheVertexOfThreePlanesIsTheirCommonPoint) {
+  Rng rng(21);
+  PredicateCounters counters;
+  int on = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const GridPoint x = random_point(rng, kGridMax - 1);
+    const GridPlane p1 = plane_through_point(rng, x), p2 = plane_through_point(rng, x), p3 = plane_through_point(rng, x);
+    if (normals_sign(p1, p2, p3, counters) == 0) continue;
+    const GridPoint near = offset(x, coordinate(rng, 1), coordinate(rng, 1), coordinate(rng, 1));
+    const GridPlane p4 = plane_through_point(rng, near);
+    ASSERT_EQ(side_of_vertex(p1, p2, p3, p4, counters), p4.side(x)) << i;
+    on += p4.side(x) == 0;
+  }
+  EXPECT_GT(on, 500);  // a fourth plane through x (near == x) is one case in 27: about 740
+  EXPECT_GT(counters.exact, 0u);
+}
+
+// The predicates against GMP on a million cases: random planes at the grid's limits and the four
+// degenerate families. Both stages are checked: every sign the filter decides, and every case
+// again through the exact fallback alone.
+TEST(ExactPredicates, AgreeWithGmpOnAMillionRandomAndDegenerateCases) {
+  Rng rng(1);
+  std::vector<Quad> cases = adversarial_cases(rng, 100000);
+  while (cases.size() < 1000000) cases.push_back({{random_plane(rng), random_plane(rng), random_plane(rng), random_plane(rng)}});
+  std::uint64_t disagreements = 0, filter_decided = 0, naive_wrong = 0, zero_det = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const GridPlane* p = cases[i].p;
+    const int truth4 = gmp_planes_sign(p[0], p[1], p[2], p[3]);
+    const int truth3 = gmp_normals_sign(p[0], p[1], p[2]);
+    zero_det += truth4 == 0;
+    if (const auto f = detail::filtered_planes_sign(p[0], p[1], p[2], p[3]); f.decided) {
+      ++filter_decided;
+      disagreements += f.sign != truth4;
+    }
+    if (const auto f = detail::filtered_normals_sign(p[0], p[1], p[2]); f.decided) disagreements += f.sign != truth3;
+    disagreements += detail::exact_planes_sign(p[0], p[1], p[2], p[3]) != truth4;
+    disagreements += detail::exact_normals_sign(p[0], p[1], p[2]) != truth3;
+    PredicateCounters counters;
+    disagreements += planes_sign(p[0], p[1], p[2], p[3], counters) != truth4;
+    naive_wrong += naive_planes_sign(p[0], p[1], p[2], p[3]) != truth4;
+  }
+  EXPECT_EQ(disagreements, 0u);
+  // Four planes through a point and the grazing family have det M = 0: the filter must pass
+  // every one of them on; random planes it decides alone.
+  EXPECT_GE(zero_det, 200000u);
+  EXPECT_LE(filter_decided, cases.size() - zero_det);
+  EXPECT_GE(filter_decided, 600000u);
+  // Without the filter's bound, doubles get tens of thousands of these signs wrong.
+  EXPECT_GT(naive_wrong, 10000u);
+}
