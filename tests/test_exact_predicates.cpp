@@ -14,6 +14,7 @@
 #include "geometry/exact_predicates.h"
 #include "geometry/grid.h"
 #include "geometry/grid_plane.h"
+#include "geometry/plane_polygon.h"
 #include "geometry/wide_int.h"
 
 using namespace bsp;
@@ -349,4 +350,151 @@ TEST(ExactPredicates, AgreeWithGmpOnAMillionRandomAndDegenerateCases) {
   EXPECT_GE(filter_decided, 600000u);
   // Without the filter's bound, doubles get tens of thousands of these signs wrong.
   EXPECT_GT(naive_wrong, 10000u);
+}
+
+namespace {
+
+// A convex polygon of `corners` grid points on a random tilted plane: points of a circle of radius
+// r in (x, y), lifted to z = z0 + s x + t y with small integer slopes (an affine map keeps
+// convexity and coplanarity exactly).
+std::vector<GridPoint> convex_points(Rng& rng, int corners) {
+  const std::int64_t r = 1 + static_cast<std::int64_t>(rng.below(std::uint64_t{1} << 36));
+  const std::int64_t cx = coordinate(rng, std::int64_t{1} << 37), cy = coordinate(rng, std::int64_t{1} << 37);
+  const std::int64_t s = coordinate(rng, 3), t = coordinate(rng, 3), z0 = coordinate(rng, std::int64_t{1} << 36);
+  std::vector<GridPoint> out;
+  for (int i = 0; i < corners; ++i) {
+    const double a = 2 * M_PI * (i + 0.3 * rng.uniform()) / corners;
+    const std::int64_t x = cx + std::llround(r * std::cos(a)), y = cy + std::llround(r * std::sin(a));
+    out.push_back({x, y, z0 + s * (x - cx) + t * (y - cy)});
+  }
+  return out;
+}
+
+// Relative to the first vertex, so that only the positions' own rounding remains.
+double polygon_area(const std::vector<Vec3>& p) {
+  Vec3 n{};
+  for (std::size_t i = 1; i + 1 < p.size(); ++i) n += cross(p[i] - p[0], p[i + 1] - p[0]);
+  return length(n) / 2;
+}
+
+double perimeter(const std::vector<Vec3>& p) {
+  double sum = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) sum += length(p[(i + 1) % p.size()] - p[i]);
+  return sum;
+}
+
+}  // namespace
+
+TEST(PlanePolygon, RefusesDegenerateAndNonConvexInput) {
+  const std::vector<GridPoint> line{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+  EXPECT_FALSE(plane_polygon(line, 0).has_value());
+  const std::vector<GridPoint> bent{{0, 0, 0}, {4, 0, 0}, {4, 4, 1}, {0, 4, 0}};  // not planar
+  EXPECT_FALSE(plane_polygon(bent, 0).has_value());
+  const std::vector<GridPoint> dart{{0, 0, 0}, {4, 0, 0}, {1, 1, 0}, {0, 4, 0}};  // not convex
+  EXPECT_FALSE(plane_polygon(dart, 0).has_value());
+  // A repeated point and a point in the middle of an edge bound nothing and are left out.
+  const std::vector<GridPoint> square{{0, 0, 0}, {2, 0, 0}, {4, 0, 0}, {4, 4, 0}, {4, 4, 0}, {0, 4, 0}};
+  const auto poly = plane_polygon(square, 7);
+  ASSERT_TRUE(poly.has_value());
+  EXPECT_EQ(poly->size(), 4u);
+  EXPECT_EQ(poly->source, 7u);
+  PredicateCounters counters;
+  EXPECT_TRUE(is_valid(*poly, counters));
+}
+
+TEST(PlanePolygon, VerticesAreTheGivenPoints) {
+  Rng rng(31);
+  const Grid grid = Grid::for_box({{-1, -1, -1}, {1, 1, 1}});
+  for (int i = 0; i < 2000; ++i) {
+    const std::vector<GridPoint> points = convex_points(rng, 3 + static_cast<int>(rng.below(6)));
+    const auto poly = plane_polygon(points, 0);
+    if (!poly || poly->size() != points.size()) continue;
+    const std::vector<Vec3> v = vertex_positions(*poly, grid);
+    ASSERT_EQ(v.size(), points.size());
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      const Vec3 expected = grid.point(points[(k + 1) % points.size()]);
+      // The quotient of two rounded determinants, then the origin added: a few ulps of 1.
+      ASSERT_LE(length(v[k] - expected), 1e-15) << i;
+    }
+  }
+}
+
+// Splitting by planes through random grid points, through a vertex (grazing) and through two
+// vertices (along a diagonal), five levels deep: every part is a valid polygon on its side of
+// the plane, the parts share their cut's two vertices exactly and keep the area.
+TEST(PlanePolygon, SplitPartsAreValidOnTheirSidesAndKeepTheArea) {
+  Rng rng(41);
+  const Grid grid = Grid::for_box({{-1, -1, -1}, {1, 1, 1}});
+  PredicateCounters counters;
+  std::uint64_t spanning = 0, grazing_or_diagonal = 0, splits = 0;
+  for (int shape = 0; shape < 400; ++shape) {
+    const auto start = plane_polygon(convex_points(rng, 3 + static_cast<int>(rng.below(6))), 0);
+    if (!start) continue;
+    std::vector<PlanePolygon> pieces{*start};
+    for (int level = 0; level < 5; ++level) {
+      std::vector<PlanePolygon> next;
+      for (const PlanePolygon& poly : pieces) {
+        // A plane through a point of the polygon's interior (the mean of its vertices on the grid),
+        // sometimes through one or two of its vertices.
+        const std::vector<Vec3> v = vertex_positions(poly, grid);
+        Vec3 mean{};
+        for (const Vec3& p : v) mean += p / static_cast<double>(v.size());
+        const GridPoint centre = *grid.snap(mean);
+        const std::uint64_t kind = rng.below(3);
+        const GridPoint a = kind >= 1 ? *grid.snap(v[0]) : random_point(rng);
+        const GridPoint b = kind == 2 ? *grid.snap(v[v.size() / 2]) : random_point(rng);
+        const auto plane = plane_through(centre, a, b);
+        if (!plane) {
+          next.push_back(poly);
+          continue;
+        }
+        const PlaneSplit s = split(poly, *plane, counters);
+        ++splits;
+        if (s.side != Side::Spanning) {
+          next.push_back(poly);
+          continue;
+        }
+        ++spanning;
+        grazing_or_diagonal += kind != 0;
+        ASSERT_TRUE(is_valid(*s.front, counters));
+        ASSERT_TRUE(is_valid(*s.back, counters));
+        for (int side : vertex_sides(*s.front, *plane, counters)) ASSERT_GE(side, 0);
+        for (int side : vertex_sides(*s.back, *plane, counters)) ASSERT_LE(side, 0);
+        const std::vector<Vec3> f = vertex_positions(*s.front, grid), bk = vertex_positions(*s.back, grid);
+        // Shared vertices, decided exactly: each on the other's three planes.
+        int shared = 0;
+        for (std::size_t i = 0; i < s.front->size(); ++i)
+          for (std::size_t j = 0; j < s.back->size(); ++j) {
+            const PlanePolygon &fp = *s.front, &bp = *s.back;
+            shared += side_of_vertex(fp.support, fp.before(i), fp.after(i), bp.before(j), counters) == 0 &&
+                      side_of_vertex(fp.support, fp.before(i), fp.after(i), bp.after(j), counters) == 0;
+          }
+        ASSERT_EQ(shared, 2);
+        const double whole = polygon_area(v), parts = polygon_area(f) + polygon_area(bk);
+        // Positions are rounded once to doubles of magnitude below 1 (an error of 1e-16 each).
+        ASSERT_NEAR(parts, whole, 1e-9 * whole + 1e-15 * perimeter(v));
+        next.push_back(*s.front);
+        next.push_back(*s.back);
+      }
+      pieces = std::move(next);
+    }
+  }
+  EXPECT_GT(spanning, 2000u);
+  EXPECT_GT(grazing_or_diagonal, 500u);
+  EXPECT_GT(counters.filtered, 0u);
+  (void)splits;
+}
+
+TEST(PlanePolygon, ClassifiesCoplanarFrontAndBack) {
+  const std::vector<GridPoint> square{{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}};
+  const PlanePolygon poly = *plane_polygon(square, 0);
+  PredicateCounters counters;
+  EXPECT_EQ(split(poly, poly.support, counters).side, Side::Coplanar);
+  EXPECT_EQ(split(poly, -poly.support, counters).side, Side::Coplanar);
+  const GridPlane x_is_5 = *plane_through({5, 0, 0}, {5, 1, 0}, {5, 0, 1});  // x = 5, a side of the square
+  const int square_side = x_is_5.side({0, 0, 0});
+  EXPECT_EQ(split(poly, x_is_5, counters).side, square_side > 0 ? Side::Front : Side::Back);
+  // Touching along an edge: the edge's vertices are on the plane, the rest on one side.
+  const GridPlane x_is_4 = *plane_through({4, 0, 0}, {4, 1, 0}, {4, 0, 1});
+  EXPECT_EQ(split(poly, x_is_4, counters).side, square_side > 0 ? Side::Front : Side::Back);
 }

@@ -26,6 +26,7 @@
 // minors of the columns (c, d) < 2^209, its 3x3 minors < 3 * 2^83 * 2^209 < 2^294, det M < 4 * 2^83
 // * 2^294 < 2^380.
 #include <cstdint>
+#include <optional>
 
 #include "geometry/grid_plane.h"
 
@@ -54,6 +55,12 @@ int planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, c
 // The three must meet in one point (normals_sign != 0); for three that do not, 0.
 int side_of_vertex(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4,
                    PredicateCounters& counters);
+
+// Where p1, p2 and p3 meet, in scene coordinates, by Cramer's rule in WideInt<7> (the numerators,
+// determinants with the offsets as a column, stay below 2^295) rounded to doubles once at the end:
+// for output only (OBJ files, the Embree scene, drawing), never for a decision. nullopt when the
+// three do not meet in one point.
+std::optional<Vec3> vertex_position(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const Grid& grid);
 
 // The stages on their own, for tests: a filter result is `decided` only when its bound allows.
 namespace detail {

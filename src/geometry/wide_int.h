@@ -67,6 +67,13 @@ class WideInt {
     return 0;
   }
   constexpr std::uint64_t limb(int i) const { return limb_[i]; }
+  // The nearest double within a few units in the last place (for output, never for a decision).
+  double to_double() const {
+    if (sign() < 0) return -(-*this).to_double();
+    double v = 0;
+    for (int i = Limbs - 1; i >= 0; --i) v = v * 0x1p64 + static_cast<double>(limb_[i]);
+    return v;
+  }
 
  private:
   std::array<std::uint64_t, Limbs> limb_;
