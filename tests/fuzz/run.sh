@@ -2,7 +2,7 @@
 # Runs one libFuzzer target over its committed corpus: tests/fuzz/run.sh TARGET SECONDS [RUNS].
 # BSPBENCH_FUZZ_SEED fixes libFuzzer's random seed (default 0: a new one each run); with a RUNS
 # count too, a run is repeatable, which is how CI runs it.
-# TARGET is mesh_reader, polygon_split, tree_build or report; the binaries come from the `fuzz`
+# TARGET is mesh_reader, polygon_split, tree_build, report or exact_split; the binaries come from the `fuzz`
 # preset (cmake --preset fuzz && cmake --build --preset fuzz). New inputs that reach new coverage
 # go to build-fuzz/corpus/TARGET (a seeded run's to a temporary directory), not into the committed
 # corpus; a crash leaves its input in build-fuzz/artifacts/ and fails the script.
