@@ -202,9 +202,10 @@ TEST(Split, ACutPointRoundingOntoASharedVertexIsNotRepeated) {
 
 namespace {
 
-// The "THPeligible" field of the mapping in /proc/self/smaps that holds `address`: whether the
-// kernel may back it with transparent huge pages. Empty when the kernel reports no such field.
-std::optional<bool> huge_page_eligible(const void* address) {
+// The VmFlags line of the mapping in /proc/self/smaps that holds `address` ("hg" among them: the
+// mapping was advised into huge pages), whatever the system's huge page settings; empty when the
+// kernel reports none.
+std::optional<std::string> mapping_flags(const void* address) {
   std::ifstream smaps("/proc/self/smaps");
   const auto a = reinterpret_cast<std::uintptr_t>(address);
   bool inside = false;
@@ -212,32 +213,26 @@ std::optional<bool> huge_page_eligible(const void* address) {
     std::uintptr_t begin = 0, end = 0;
     if (std::sscanf(line.c_str(), "%lx-%lx ", &begin, &end) == 2 && line.find(':') > line.find(' ')) {
       inside = begin <= a && a < end;
-    } else if (inside && line.rfind("THPeligible:", 0) == 0) {
-      return line.find('1') != std::string::npos;
+    } else if (inside && line.rfind("VmFlags:", 0) == 0) {
+      return line.substr(8) + " ";
     }
   }
   return std::nullopt;
 }
 
-std::string huge_page_mode() {
-  std::ifstream in("/sys/kernel/mm/transparent_hugepage/enabled");
-  std::string mode;
-  std::getline(in, mode);
-  return mode;
-}
+bool advised(const std::string& flags) { return flags.find(" hg ") != std::string::npos; }
 
 }  // namespace
 
-// Only arrays of kHugePageBytes or more are advised: under the "madvise" mode the smaller mapped
-// ones stay in 4 KiB pages.
+// Arrays of kHugePageBytes or more are advised into huge pages; smaller mapped ones are not.
 TEST(PageAllocator, AdvisesLargeArraysIntoHugePages) {
-  const std::string mode = huge_page_mode();
-  if (mode.find("[never]") != std::string::npos || mode.empty()) GTEST_SKIP() << "transparent huge pages are off";
+  if (!std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled")) GTEST_SKIP() << "no transparent huge pages";
   PageVector<double> large(2 * kHugePageBytes / sizeof(double), 1.0);
-  const auto eligible = huge_page_eligible(large.data());
-  if (!eligible) GTEST_SKIP() << "the kernel reports no THPeligible field";
-  EXPECT_TRUE(*eligible);
-  if (mode.find("[madvise]") == std::string::npos) return;
+  const auto large_flags = mapping_flags(large.data());
+  if (!large_flags) GTEST_SKIP() << "the kernel reports no VmFlags";
+  EXPECT_TRUE(advised(*large_flags)) << *large_flags;
   PageVector<double> small(kPageAllocationBytes / sizeof(double), 1.0);
-  EXPECT_EQ(huge_page_eligible(small.data()), false);
+  const auto small_flags = mapping_flags(small.data());
+  ASSERT_TRUE(small_flags.has_value());
+  EXPECT_FALSE(advised(*small_flags)) << *small_flags;
 }

@@ -21,8 +21,8 @@
 // Nothing underflows (nonzero terms are at least 1) or overflows (below 2^380). Contraction into
 // fused multiply-adds only removes roundings, so the bound holds for any -ffp-contract setting.
 //
-// Stage 2, the fallback: the same expansion in WideInt<7> (448 bits), exact because every partial
-// result fits (kNormalBits = 83, kOffsetBits = 125): det N < 3 * 2 * 2^249 < 2^252; det M's 2x2
+// Stage 2, the fallback: the same expansion in WideInt<7> (448 bits), exact because the result
+// fits (and so does every partial result) (kNormalBits = 83, kOffsetBits = 125): det N < 3 * 2 * 2^249 < 2^252; det M's 2x2
 // minors of the columns (c, d) < 2^209, its 3x3 minors < 3 * 2^83 * 2^209 < 2^294, det M < 4 * 2^83
 // * 2^294 < 2^380.
 #include <cstdint>
@@ -57,8 +57,8 @@ int side_of_vertex(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3
                    PredicateCounters& counters);
 
 // Where p1, p2 and p3 meet, in scene coordinates, by Cramer's rule in WideInt<7> (the numerators,
-// determinants with the offsets as a column, stay below 2^295) rounded to doubles once at the end:
-// for output only (OBJ files, the Embree scene, drawing), never for a decision. nullopt when the
+// determinants with the offsets as a column, stay below 2^295), then converted to doubles and
+// divided (a few roundings, each of 2^-53 relative): for output only (OBJ files, the Embree scene, drawing), never for a decision. nullopt when the
 // three do not meet in one point.
 std::optional<Vec3> vertex_position(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const Grid& grid);
 

@@ -93,7 +93,9 @@ bool is_valid(const PlanePolygon& poly, PredicateCounters& counters) {
   const std::size_t k = poly.size();
   if (k < 3) return false;
   for (std::size_t i = 0; i < k; ++i) {
-    if (normals_sign(poly.support, poly.before(i), poly.after(i), counters) == 0) return false;
+    // Defined, and counter-clockwise: the normals of the support and of consecutive bounds turn
+    // the same way at every vertex (for a square in z = 0 seen from +z: +z, +y, -x, det = +1).
+    if (normals_sign(poly.support, poly.before(i), poly.after(i), counters) <= 0) return false;
     for (std::size_t j = 0; j < k; ++j) {
       if (j == i || j == (i + 1) % k) continue;
       if (side_of_vertex(poly.support, poly.before(i), poly.after(i), poly.bounds[j], counters) <= 0) return false;

@@ -7,8 +7,9 @@
 // exactly (the same three planes).
 //
 // Invariants (checked by is_valid): at least three bounds; every vertex is defined (its three planes
-// meet in one point) and lies strictly in front of every bound it is not on, so no edge has zero
-// length and no bound is redundant.
+// meet in one point) with the bounds in counter-clockwise order (det of the normals of the support,
+// bounds[i] and bounds[i + 1] positive), and lies strictly in front of every bound it is not on, so
+// no edge has zero length and no bound is redundant.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -33,7 +34,8 @@ struct PlanePolygon {
 
 // The polygon of grid points given counter-clockwise, convex and coplanar (every point on the plane
 // of the first three non-collinear ones). Points equal to the one before and points collinear with
-// their neighbours are left out, since they bound nothing. nullopt when fewer than three points
+// their neighbours are left out, since they bound nothing (so is the tip of a spike that doubles
+// back along an edge: its two sides are collinear, and the polygon without it has the same area). nullopt when fewer than three points
 // remain, or when the points are not coplanar or not strictly convex.
 std::optional<PlanePolygon> plane_polygon(std::span<const GridPoint> points, std::uint32_t source);
 

@@ -1,8 +1,9 @@
 #pragma once
 // Fixed-width signed integers for the exact fallback of the exact kernel's predicates
-// (geometry/exact_predicates.h): the determinants there need up to 385 bits, more than any
+// (geometry/exact_predicates.h): the determinants there need up to 380 bits, more than any
 // built-in type, and their width is bounded by construction, so a fixed width with wrap-around
-// arithmetic is exact as long as every true result fits, which the callers prove (never checked
+// arithmetic is exact as long as the final result fits (arithmetic modulo 2^(64L) is a ring, so
+// intermediate wrap-around cancels), which the callers prove (never checked
 // at run time: the bound is the contract).
 //
 // Notation: a WideInt<L> holds L little-endian 64-bit limbs in two's complement, so it represents
