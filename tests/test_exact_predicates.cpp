@@ -16,6 +16,9 @@
 #include "geometry/grid.h"
 #include "geometry/grid_plane.h"
 #include "geometry/plane_polygon.h"
+#include "geometry/snap.h"
+#include "catalog.h"
+#include "scene/scene.h"
 #include "geometry/wide_int.h"
 
 using namespace bsp;
@@ -533,4 +536,45 @@ TEST(PlanePolygon, ClassifiesCoplanarFrontAndBack) {
   // Touching along an edge: the edge's vertices are on the plane, the rest on one side.
   const GridPlane x_is_4 = *plane_through({4, 0, 0}, {4, 1, 0}, {4, 0, 1});
   EXPECT_EQ(split(poly, x_is_4, counters).side, square_side > 0 ? Side::Front : Side::Back);
+}
+
+TEST(Snap, KeepsTrianglesFansBentQuadsAndCountsWhatCollapsed) {
+  const double e = 1e-3;  // the grid step of a box of diagonal ~3.5 is about 2^-41
+  const std::vector<Polygon> input{
+      {{{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}}, 0},                    // a triangle: kept whole
+      {{{{0, 0, 1}}, {{1, 0, 1}}, {{1, 1, 1 + e}}, {{0, 1, 1}}}, 1},   // a quad bent by 1e-3: fanned
+      {{{{0.5, 0.5, 0.5}}, {{0.5 + 1e-14, 0.5, 0.5}}, {{0.5, 0.5 + 1e-14, 0.5}}}, 2},  // below the grid: a point
+      {{{{0, 0, 0}}, {{2, 2, 2}}}, 3},                                  // a segment: not for the 3D kernel
+  };
+  const SnappedScene s = snap_polygons(input);
+  EXPECT_EQ(s.report.polygons, 3u);
+  EXPECT_EQ(s.report.not_polygons, 1u);
+  EXPECT_EQ(s.report.kept_whole, 1u);
+  EXPECT_EQ(s.report.fanned, 1u);
+  EXPECT_EQ(s.report.fan_triangles, 2u);
+  EXPECT_EQ(s.report.flipped, 0u);
+  EXPECT_EQ(s.report.degenerate, 1u);
+  EXPECT_GT(s.report.degenerate_area, 0.0);
+  ASSERT_EQ(s.polygons.size(), 3u);
+  EXPECT_EQ(s.polygons[0].source, 0u);
+  EXPECT_EQ(s.polygons[1].source, 1u);
+  EXPECT_EQ(s.polygons[2].source, 1u);
+  EXPECT_EQ(s.report.vertices.vertices, 10u);
+  EXPECT_LE(s.report.vertices.max_displacement, kSnapRelative * std::sqrt(2 * 2 * 3.0) * (1 + 1e-6));
+  PredicateCounters counters;
+  for (const PlanePolygon& p : s.polygons) EXPECT_TRUE(is_valid(p, counters));
+}
+
+// The near-degenerate scene's features are 1e-9 of its diagonal, a thousand grid steps: snapping
+// collapses none of them, and every polygon stays a valid plane polygon.
+TEST(Snap, NearDegenerateFeaturesSurvive) {
+  const Scene scene = make_scene("near-degenerate", {{"n", "1000"}});
+  const SnappedScene s = snap_polygons(scene.polygons);
+  EXPECT_EQ(s.report.degenerate, 0u);
+  EXPECT_EQ(s.report.polygons, scene.polygons.size());
+  EXPECT_EQ(s.report.kept_whole + s.report.fanned, scene.polygons.size());
+  const double diagonal = bounds(scene).diagonal();
+  EXPECT_LE(s.report.vertices.max_displacement, kSnapRelative * diagonal * (1 + 1e-6));
+  PredicateCounters counters;
+  for (const PlanePolygon& p : s.polygons) ASSERT_TRUE(is_valid(p, counters));
 }

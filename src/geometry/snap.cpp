@@ -1,0 +1,72 @@
+#include "geometry/snap.h"
+
+#include <stdexcept>
+
+namespace bsp {
+
+namespace {
+
+Grid grid_of(std::span<const Polygon> input) {
+  Box box;
+  for (const Polygon& poly : input)
+    for (const Vertex& v : poly.verts) {
+      if (!is_finite(v.p)) throw std::domain_error("a vertex has a non-finite coordinate");
+      box.add(v.p);
+    }
+  return Grid::for_box(box);
+}
+
+// The fan from the first point: the triangles that are not collinear.
+std::vector<PlanePolygon> fan(const std::vector<GridPoint>& points, std::uint32_t source) {
+  std::vector<PlanePolygon> out;
+  for (std::size_t i = 1; i + 1 < points.size(); ++i) {
+    const GridPoint triangle[] = {points[0], points[i], points[i + 1]};
+    if (auto t = plane_polygon(triangle, source)) out.push_back(std::move(*t));
+  }
+  return out;
+}
+
+}  // namespace
+
+SnappedScene snap_polygons(std::span<const Polygon> input) {
+  SnappedScene out{grid_of(input), {}, {}};
+  SnapReport& r = out.report;
+  std::vector<GridPoint> points;
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    const Polygon& poly = input[i];
+    if (poly.verts.size() < 3) {
+      ++r.not_polygons;
+      continue;
+    }
+    ++r.polygons;
+    points.clear();
+    for (const Vertex& v : poly.verts) {
+      const GridPoint q = *out.grid.snap(v.p);  // every point of the box is in the grid's range
+      r.vertices.add(length(out.grid.point(q) - v.p));
+      points.push_back(q);
+    }
+    const auto source = static_cast<std::uint32_t>(i);
+    if (auto whole = plane_polygon(points, source)) {
+      ++r.kept_whole;
+      out.polygons.push_back(std::move(*whole));
+      continue;
+    }
+    std::vector<PlanePolygon> triangles = fan(points, source);
+    if (triangles.empty()) {
+      ++r.degenerate;
+      r.degenerate_area += area(poly);
+      continue;
+    }
+    ++r.fanned;
+    r.fan_triangles += triangles.size();
+    const Vec3 facing = newell_normal(poly);
+    for (const PlanePolygon& t : triangles) {
+      const Vec3 n{static_cast<double>(t.support.a), static_cast<double>(t.support.b), static_cast<double>(t.support.c)};
+      r.flipped += dot(n, facing) < 0;
+    }
+    for (PlanePolygon& t : triangles) out.polygons.push_back(std::move(t));
+  }
+  return out;
+}
+
+}  // namespace bsp
