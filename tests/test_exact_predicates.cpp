@@ -379,20 +379,15 @@ std::vector<GridPoint> convex_points(Rng& rng, int corners) {
   return out;
 }
 
-// Relative to the first vertex, so that only the positions' own rounding remains.
-double polygon_area(const std::vector<Vec3>& p) {
-  Vec3 n{};
-  for (std::size_t i = 1; i + 1 < p.size(); ++i) n += cross(p[i] - p[0], p[i + 1] - p[0]);
-  return length(n) / 2;
-}
-
-// Newell's normal of the vertex loop, relative to its first vertex: along the side it is seen
-// counter-clockwise from.
+// Newell's normal of the vertex loop, relative to its first vertex (so that only the positions' own
+// rounding remains): along the side it is seen counter-clockwise from, twice the area long.
 Vec3 winding(const std::vector<Vec3>& p) {
   Vec3 n{};
   for (std::size_t i = 1; i + 1 < p.size(); ++i) n += cross(p[i] - p[0], p[i + 1] - p[0]);
   return n;
 }
+
+double polygon_area(const std::vector<Vec3>& p) { return length(winding(p)) / 2; }
 
 double perimeter(const std::vector<Vec3>& p) {
   double sum = 0;

@@ -128,11 +128,12 @@ int planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, c
 }
 
 std::optional<Vec3> vertex_position(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const Grid& grid) {
-  const Exact det = det3<Exact, false>(normals<Exact>(p1, p2, p3, to_exact));
+  const Matrix<Exact, 3> n = normals<Exact>(p1, p2, p3, to_exact);
+  const Exact det = det3<Exact, false>(n);
   if (det.sign() == 0) return std::nullopt;
   // N x = -(d1, d2, d3): coordinate j is -det(N with column j replaced by the offsets) / det N.
   const auto solve = [&](int j) {
-    Matrix<Exact, 3> m = normals<Exact>(p1, p2, p3, to_exact);
+    Matrix<Exact, 3> m = n;
     const GridPlane* p[] = {&p1, &p2, &p3};
     for (int i = 0; i < 3; ++i) m[i][j] = Exact(p[i]->d);
     return -det3<Exact, false>(m).to_double() / det.to_double();
