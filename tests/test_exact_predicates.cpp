@@ -333,7 +333,7 @@ TEST(ExactPredicates, AgreeWithGmpOnAMillionRandomAndDegenerateCases) {
   Rng rng(1);
   std::vector<Quad> cases = adversarial_cases(rng, 100000);
   while (cases.size() < 1000000) cases.push_back({{random_plane(rng), random_plane(rng), random_plane(rng), random_plane(rng)}});
-  std::uint64_t disagreements = 0, filter_decided = 0, naive_wrong = 0, zero_det = 0;
+  std::uint64_t disagreements = 0, filter_decided = 0, side_decided = 0, naive_wrong = 0, zero_det = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const GridPlane* p = cases[i].p;
     const int truth4 = gmp_planes_sign(p[0], p[1], p[2], p[3]);
@@ -348,6 +348,14 @@ TEST(ExactPredicates, AgreeWithGmpOnAMillionRandomAndDegenerateCases) {
     disagreements += detail::exact_normals_sign(p[0], p[1], p[2]) != truth3;
     PredicateCounters counters;
     disagreements += planes_sign(p[0], p[1], p[2], p[3], counters) != truth4;
+    // The vertex's cached cofactors against the fourth plane: the sign of det M * det N.
+    if (truth3 != 0) {
+      const auto v = vertex_cofactors(p[0], p[1], p[2], counters);
+      if (const auto f = detail::filtered_side(*v, approximate(p[3])); f.decided) {
+        ++side_decided;
+        disagreements += f.sign != truth3 * truth4;
+      }
+    }
     naive_wrong += naive_planes_sign(p[0], p[1], p[2], p[3]) != truth4;
   }
   EXPECT_EQ(disagreements, 0u);
@@ -357,6 +365,7 @@ TEST(ExactPredicates, AgreeWithGmpOnAMillionRandomAndDegenerateCases) {
   // are rare, so a threshold a few times too small could still pass here.
   EXPECT_GE(zero_det, 200000u);
   EXPECT_GE(filter_decided, 600000u);
+  EXPECT_GE(side_decided, 600000u);
   // Without the filter's bound, doubles get tens of thousands of these signs wrong.
   EXPECT_GT(naive_wrong, 10000u);
 }

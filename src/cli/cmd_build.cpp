@@ -7,6 +7,7 @@
 #include "cli/metrics_args.h"
 #include "cli/run_args.h"
 #include "experiments/draw/draw.h"
+#include "metrics/kernel_stats.h"
 
 namespace bsp::cli {
 
@@ -16,12 +17,20 @@ int run(Args& args) {
   std::uint64_t seed = 1;
   const bool json = args.flag("--json");
   Scene scene = scene_from_args(args, seed);
-  const TreeArgs t = tree_args_from(args, seed);
+  TreeArgs t = tree_args_from(args, seed);
+  t.kernel = kernel_from(args, t);
   const MetricsSettings settings = metrics_settings_from(args, seed);
   args.finish();
-  const Tree tree = build_from_args(scene, t);
   nlohmann::json out = describe_run(scene, t);
-  out.update(to_json(experiments::measure_drawing(tree, scene.polygons, settings)));
+  if (t.kernel == Kernel::Exact) {
+    // The measures read the exact tree's view (vertices from planes); "exact" says what the kernel did.
+    const ExactTree tree = build_exact_from_args(scene, t);
+    out.update(to_json(experiments::measure_drawing(tree.tree, scene.polygons, settings)));
+    out["exact"] = to_json(tree.exact);
+  } else {
+    const Tree tree = build_from_args(scene, t);
+    out.update(to_json(experiments::measure_drawing(tree, scene.polygons, settings)));
+  }
   if (json) {
     std::cout << out.dump() << "\n";
   } else {
@@ -34,9 +43,10 @@ int run(Args& args) {
 
 Command build_command() {
   static const std::string usage =
-      std::string(kSceneUsage) + " " + std::string(kTreeUsage) + " " + std::string(kMetricsUsage) + " [--json]";
+      std::string(kSceneUsage) + " " + std::string(kTreeUsage) + " " + std::string(kKernelUsage) + " " +
+      std::string(kMetricsUsage) + " [--json]";
   return {"build", usage, "build a tree and print its metrics", run,
-          concat({kSceneOptions, kTreeOptions, kMetricsOptions, kJsonOption})};
+          concat({kSceneOptions, kTreeOptions, {kKernelOption}, kMetricsOptions, kJsonOption})};
 }
 
 }  // namespace bsp::cli

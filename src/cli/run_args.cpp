@@ -116,12 +116,26 @@ Tree build_from_args(const Scene& scene, const TreeArgs& t) {
   return experiments::build_drawing(scene.polygons, splitter.get(), t.options);
 }
 
+Kernel kernel_from(Args& args, const TreeArgs& t) {
+  const std::string name = args.option("--kernel").value_or("float");
+  const auto kernel = kernel_named(name);
+  if (!kernel) throw UsageError("--kernel must be float or exact, not '" + name + "'");
+  if (*kernel == Kernel::Exact && (t.options.incremental || t.options.shape == Shape::Leafy))
+    throw UsageError("--kernel exact builds strict and coarse trees recursively: drop --incremental and --shape leafy");
+  return *kernel;
+}
+
+ExactTree build_exact_from_args(const Scene& scene, const TreeArgs& t) {
+  const std::unique_ptr<Splitter> splitter = make_splitter(t.heuristic, t.params, t.seed);
+  return build_exact_tree(scene.polygons, *splitter, t.options);
+}
+
 nlohmann::json describe_run(const Scene& scene, const TreeArgs& t) {
   const nlohmann::json s = scene_json(scene);
   const nlohmann::json params = t.options.incremental
                                     ? nlohmann::json::object()
                                     : ParamSet::resolve(find_heuristic(t.heuristic).params, t.params, t.heuristic).to_json();
-  return {{"scene", scene.name},
+  nlohmann::json out = {{"scene", scene.name},
           {"scene_params", s["params"]},
           {"scene_hash", s["hash"]},
           {"scene_bounds", s["bounds"]},
@@ -131,6 +145,8 @@ nlohmann::json describe_run(const Scene& scene, const TreeArgs& t) {
           {"build", t.options.incremental ? "incremental" : "recursive"},
           {"order", t.options.order == InsertOrder::Shuffled ? "shuffled" : "given"},
           {"seed", t.seed}};
+  if (t.kernel != Kernel::Float) out["kernel"] = kernel_name(t.kernel);
+  return out;
 }
 
 }  // namespace bsp::cli

@@ -14,6 +14,7 @@
 #include "common/params.h"
 #include "scene/scene.h"
 #include "tree/build.h"
+#include "tree/exact_build.h"
 
 namespace bsp::cli {
 
@@ -37,11 +38,17 @@ inline const OptionHelps kTreeOptions = {
     {"--param k=v", "set a heuristic parameter; repeatable"},
     kBuildModeOptions[0], kBuildModeOptions[1], kBuildModeOptions[2]};
 
+inline const OptionHelp kKernelOption = {
+    "--kernel float|exact",
+    "the geometry: doubles with the tolerance plane_eps (default), or exact plane-based geometry on the scene's grid"};
+inline constexpr std::string_view kKernelUsage = "[--kernel float|exact]";
+
 struct TreeArgs {
   std::string heuristic;
   ParamAssignments params;
   BuildOptions options;
   std::uint64_t seed = 1;  // the scene's seed, or --seed for files; feeds the heuristic's randomness
+  Kernel kernel = Kernel::Float;  // read by commands that take --kernel (kernel_from)
 };
 
 // `seed` receives --seed (default 1): the scene's seed for a generator, the heuristic's for any run.
@@ -51,13 +58,16 @@ TreeArgs tree_args_from(Args& args, std::uint64_t seed);
 // that does not name a heuristic, for commands that run several).
 BuildOptions build_options_from(Args& args, std::uint64_t seed);
 Tree build_from_args(const Scene& scene, const TreeArgs& t);
+// --kernel float|exact (default float); exact refuses --incremental and --shape leafy in `t`.
+Kernel kernel_from(Args& args, const TreeArgs& t);
+ExactTree build_exact_from_args(const Scene& scene, const TreeArgs& t);
 // --shape strict|coarse|leafy alone (default strict), for commands whose builds are never incremental.
 Shape shape_from(Args& args);
 // A catalog scene or mesh:NAME with "k=v" parameters, else a mesh file (which takes none: a
 // UsageError naming `option`); checked with check_scene.
 Scene scene_or_file(const std::string& spec, const std::vector<std::string>& params, std::string_view option);
 // Identifies a run in every JSON the CLI writes: scene name, params, hash and bounds; heuristic,
-// its resolved params, shape, build order, seed.
+// its resolved params, shape, build order, seed; the kernel only when it is not float.
 nlohmann::json describe_run(const Scene& scene, const TreeArgs& t);
 
 }  // namespace bsp::cli

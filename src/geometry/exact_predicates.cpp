@@ -1,5 +1,6 @@
 #include "geometry/exact_predicates.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -125,6 +126,32 @@ int planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, c
   }
   ++counters.exact;
   return detail::exact_planes_sign(p1, p2, p3, p4);
+}
+
+PlaneApprox approximate(const GridPlane& p) { return {to_double(p.a), to_double(p.b), to_double(p.c), to_double(p.d)}; }
+
+std::optional<VertexCofactors> vertex_cofactors(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3,
+                                                PredicateCounters& counters) {
+  const int n = normals_sign(p1, p2, p3, counters);
+  if (n == 0) return std::nullopt;
+  const Matrix<double, 4> m = planes<double>(p1, p2, p3, p1, to_double);      // row 3 unused
+  const Matrix<double, 4> mag = planes<double>(p1, p2, p3, p1, to_magnitude);
+  // The minor of rows 0..2 without column `skip`, in the column order the expansion above uses.
+  const auto minor = [](const Matrix<double, 4>& a, int skip) {
+    Matrix<double, 3> out{};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0, k = 0; j < 4; ++j)
+        if (j != skip) out[i][k++] = a[i][j];
+    return out;
+  };
+  VertexCofactors v;
+  for (int j = 0; j < 4; ++j) {
+    const double sign = ((3 + j) % 2 == 0 ? 1.0 : -1.0) * n;  // (-1)^(3 + j) * sign(det N)
+    v.c[j] = sign * det3<double, false>(minor(m, j));
+    const double error = (kFilterRoundings3 + 1) * 0x1p-53 * det3<double, true>(minor(mag, j));
+    (j == 3 ? v.error_d : v.error_abc) = std::max(j == 3 ? v.error_d : v.error_abc, error);
+  }
+  return v;
 }
 
 std::optional<Vec3> vertex_position(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const Grid& grid) {

@@ -25,6 +25,7 @@
 // fits (and so does every partial result) (kNormalBits = 83, kOffsetBits = 125): det N < 3 * 2 * 2^249 < 2^252; det M's 2x2
 // minors of the columns (c, d) < 2^209, its 3x3 minors < 3 * 2^83 * 2^209 < 2^294, det M < 4 * 2^83
 // * 2^294 < 2^380.
+#include <cmath>
 #include <cstdint>
 #include <optional>
 
@@ -62,6 +63,32 @@ int side_of_vertex(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3
 // three do not meet in one point.
 std::optional<Vec3> vertex_position(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const Grid& grid);
 
+// A vertex prepared for many side tests, the filter in the form of indirect predicates
+// [Attene2020]: expanding det M along the fourth plane's row gives det M = a C_0 + b C_1 + c C_2 +
+// d C_3, where the cofactors C_j depend only on the three planes that make the vertex (C_3 = det N).
+// They are computed once, in doubles, each with the filter's bound on its error (9 u perm~, as
+// above) and multiplied by sign(det N) (decided exactly, once), so that the sign of the sum is the
+// vertex's side of any fourth plane. The test of one plane then costs four products.
+//
+// Bound of the test: with p~_j the plane's coefficients rounded to doubles (relative error u) and
+// e_j the cofactors' bounds, the computed sum differs from det M * sign(det N) by at most
+// (gamma_4 + u / (1 - u)) S + (1 + u / (1 - u)) E, where S = sum |p~_j C~_j| and E = sum |p~_j| e_j
+// [Higham2002 §3.1]. The test's threshold, 2^-50 S~ + (1 + 2^-40) E~ with S~ and E~ computed in
+// doubles (each within 6 u of the true sum), exceeds that: 8 u > 5.1 u and 2^-40 > 9 u.
+struct VertexCofactors {
+  double c[4] = {0, 0, 0, 0};  // sign(det N) * (C_0, C_1, C_2, C_3)
+  double error_abc = 0;        // bound on the error of c[0], c[1] and c[2]
+  double error_d = 0;          // bound on the error of c[3]
+};
+// The coefficients of a plane rounded to doubles (each once, to nearest), for filtered tests.
+struct PlaneApprox {
+  double a = 0, b = 0, c = 0, d = 0;
+};
+PlaneApprox approximate(const GridPlane& p);
+// The cofactors of the point where p1, p2 and p3 meet; nullopt when they do not meet in one point.
+std::optional<VertexCofactors> vertex_cofactors(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3,
+                                                PredicateCounters& counters);
+
 // The stages on their own, for tests: a filter result is `decided` only when its bound allows.
 namespace detail {
 struct MaybeSign {
@@ -72,6 +99,17 @@ MaybeSign filtered_normals_sign(const GridPlane& p1, const GridPlane& p2, const 
 MaybeSign filtered_planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4);
 int exact_normals_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3);
 int exact_planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4);
+// The side of the vertex of `v` with respect to the plane `p` when the bound above decides it.
+inline MaybeSign filtered_side(const VertexCofactors& v, const PlaneApprox& p) {
+  const double t0 = p.a * v.c[0], t1 = p.b * v.c[1], t2 = p.c * v.c[2], t3 = p.d * v.c[3];
+  const double sum = ((t0 + t1) + t2) + t3;
+  const double s = ((std::abs(t0) + std::abs(t1)) + std::abs(t2)) + std::abs(t3);
+  const double e = (std::abs(p.a) + std::abs(p.b) + std::abs(p.c)) * v.error_abc + std::abs(p.d) * v.error_d;
+  const double threshold = 0x1p-50 * s + (1 + 0x1p-40) * e;
+  if (sum > threshold) return {true, 1};
+  if (sum < -threshold) return {true, -1};
+  return {false, 0};
+}
 }  // namespace detail
 
 }  // namespace bsp

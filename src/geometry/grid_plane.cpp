@@ -1,6 +1,10 @@
 #include "geometry/grid_plane.h"
 
+#include <cmath>
 #include <cstdlib>
+#include <algorithm>
+#include <cstdint>
+#include <utility>
 
 namespace bsp {
 
@@ -24,7 +28,58 @@ GridPlane plane_with_normal(const Wide3& n, const GridPoint& p) {
 
 Int128 magnitude(Int128 v) { return v < 0 ? -v : v; }
 
+using UInt128 = unsigned __int128;
+
+// Binary GCD [Knuth, TAOCP vol. 2, 4.5.2, algorithm B]; gcd(0, v) = v.
+UInt128 gcd(UInt128 u, UInt128 v) {
+  if (u == 0) return v;
+  if (v == 0) return u;
+  const auto trailing = [](UInt128 x) {
+    const auto low = static_cast<std::uint64_t>(x);
+    return low ? __builtin_ctzll(low) : 64 + __builtin_ctzll(static_cast<std::uint64_t>(x >> 64));
+  };
+  const int shift = std::min(trailing(u), trailing(v));
+  u >>= trailing(u);
+  while (v != 0) {
+    v >>= trailing(v);
+    if (u > v) std::swap(u, v);
+    v -= u;
+  }
+  return u << shift;
+}
+
 }  // namespace
+
+GridPlane canonical(const GridPlane& p) {
+  const auto mag = [](Int128 v) { return static_cast<UInt128>(v < 0 ? -v : v); };
+  const UInt128 g = gcd(gcd(mag(p.a), mag(p.b)), gcd(mag(p.c), mag(p.d)));
+  if (g <= 1) return p;
+  const auto div = [g](Int128 v) { return v < 0 ? -static_cast<Int128>(static_cast<UInt128>(-v) / g) : static_cast<Int128>(static_cast<UInt128>(v) / g); };
+  return {div(p.a), div(p.b), div(p.c), div(p.d)};
+}
+
+std::optional<GridPlane> round_plane(const Plane& p, const Grid& grid) {
+  const double m = std::max({std::abs(p.n.x), std::abs(p.n.y), std::abs(p.n.z)});
+  if (!(m > 0) || !std::isfinite(m) || !std::isfinite(p.d)) return std::nullopt;
+  // 2^e * m in [2^(bits - 1), 2^bits): frexp gives m = f * 2^x with f in [0.5, 1).
+  int x = 0;
+  std::frexp(m, &x);
+  const int e = kFreeNormalBits - x;
+  const double offset = std::ldexp((dot(p.n, grid.origin()) + p.d) / grid.step(), e);
+  constexpr double kOffsetLimit = 0x1p82;
+  if (!(std::abs(offset) < kOffsetLimit)) return std::nullopt;
+  const auto round = [](double v) { return static_cast<Int128>(static_cast<std::int64_t>(std::nearbyint(v))); };
+  const auto round_big = [](double v) {  // |v| < 2^82: the rounded magnitude is split at 2^64 exactly
+    const double r = std::nearbyint(std::abs(v));
+    const double high = std::floor(r * 0x1p-64);
+    const Int128 magnitude = static_cast<Int128>(static_cast<std::uint64_t>(high)) << 64 |
+                             static_cast<Int128>(static_cast<std::uint64_t>(r - high * 0x1p64));
+    return v < 0 ? -magnitude : magnitude;
+  };
+  const GridPlane q{round(std::ldexp(p.n.x, e)), round(std::ldexp(p.n.y, e)), round(std::ldexp(p.n.z, e)),
+                    round_big(offset)};
+  return canonical(q);
+}
 
 std::optional<GridPlane> plane_through(const GridPoint& p, const GridPoint& q, const GridPoint& r) {
   const Wide3 n = cross(difference(q, p), difference(r, p));

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "geometry/grid.h"
+#include "geometry/plane.h"
 #include "geometry/wide_int.h"
 
 namespace bsp {
@@ -46,5 +47,24 @@ std::optional<GridPlane> plane_through(const GridPoint& p, const GridPoint& q, c
 // p == q or `inside` is on the line.
 std::optional<GridPlane> edge_plane(const GridPoint& p, const GridPoint& q, const GridPlane& support,
                                     const GridPoint& inside);
+
+// The plane divided by the greatest common divisor of its coefficients, orientation kept: two
+// grid planes through the same points with the same front are then equal coefficient for
+// coefficient, so a pool can share them by comparing integers. The zero plane stays zero.
+GridPlane canonical(const GridPlane& p);
+
+// Rounding a free plane (one a splitter chose through no three grid points: halving's, a dynamic
+// scene's object planes) to a grid plane, the kernel's one rounding of a plane. The rule: in grid
+// coordinates the plane is n . g + (n . origin + d) / step = 0; scale it by the power of two
+// 2^e that brings its largest normal component into [2^(kFreeNormalBits - 1), 2^kFreeNormalBits),
+// round each normal component and the offset to the nearest integer (the scaling is exact, the
+// offset (n . origin + d) / step rounds once in doubles before), and take canonical(). The normal
+// then turns by at most about 2^(1 - kFreeNormalBits) radians and the plane moves by at most
+// about a grid step near the scene, far less than snapping moves a vertex. Coefficients stay below
+// an edge plane's (normal < 2^41, offset < 2^83), inside the predicates' bounds. nullopt when the
+// plane lies beyond every grid point (its offset would exceed 2^82: it cuts nothing) or has a
+// zero or non-finite normal.
+inline constexpr int kFreeNormalBits = 40;
+std::optional<GridPlane> round_plane(const Plane& p, const Grid& grid);
 
 }  // namespace bsp

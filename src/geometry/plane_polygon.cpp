@@ -29,25 +29,10 @@ std::vector<GridPoint> corners(std::span<const GridPoint> points) {
   return out;
 }
 
-// The part of `poly` on `keep`'s side of `cut`: the bounds of the edges with an endpoint on that
-// side, in order, then `cut`. The vertices on the other side form one run (the polygon is convex);
-// the walk starts at the edge leaving that run, so the cut closes the part where the run was.
-PlanePolygon part(const PlanePolygon& poly, const std::vector<int>& sides, int keep, const GridPlane& cut) {
-  const std::size_t k = poly.size();
-  std::size_t run_end = 0;  // spanning: some vertex is on the other side, so the run has an end
-  while (!(sides[run_end] == -keep && sides[(run_end + 1) % k] != -keep)) ++run_end;
-  PlanePolygon out{poly.support, {}, poly.source};
-  for (std::size_t n = 1; n <= k; ++n) {
-    const std::size_t j = (run_end + n) % k;  // edge j runs from vertex j - 1 to vertex j
-    if (sides[(j + k - 1) % k] == keep || sides[j] == keep) out.bounds.push_back(poly.bounds[j]);
-  }
-  out.bounds.push_back(cut);
-  return out;
-}
-
 }  // namespace
 
-std::optional<PlanePolygon> plane_polygon(std::span<const GridPoint> points, std::uint32_t source) {
+std::optional<PlanePolygon> plane_polygon(std::span<const GridPoint> points, std::uint32_t source,
+                                          std::vector<GridPoint>* vertices) {
   const std::vector<GridPoint> c = corners(points);
   if (c.size() < 3) return std::nullopt;
   const auto support = plane_through(c[0], c[1], c[2]);
@@ -66,7 +51,32 @@ std::optional<PlanePolygon> plane_polygon(std::span<const GridPoint> points, std
   for (std::size_t i = 0; i < k; ++i)
     for (std::size_t j = 0; j < k; ++j)
       if (j != i && j != (i + 1) % k && poly.bounds[i].side(c[j]) <= 0) return std::nullopt;
+  if (vertices) {  // vertex i, where edges i and i + 1 meet, is point i + 1
+    vertices->clear();
+    for (std::size_t i = 0; i < k; ++i) vertices->push_back(c[(i + 1) % k]);
+  }
   return poly;
+}
+
+// The bounds of the edges with an endpoint on `keep`'s side, in order, then the cut. The vertices
+// on the other side form one run (the polygon is convex); the walk starts at the edge leaving that
+// run, so the kept edges are consecutive and the cut closes the part where the run was.
+PolygonPart part_of(const PlanePolygon& poly, std::span<const int> sides, int keep, const GridPlane& cut) {
+  const std::size_t k = poly.size();
+  std::size_t run_end = 0;  // both signs occur, so the other side's run has an end
+  while (!(sides[run_end] == -keep && sides[(run_end + 1) % k] != -keep)) ++run_end;
+  PolygonPart out{{poly.support, {}, poly.source}, {}};
+  for (std::size_t n = 1; n <= k; ++n) {
+    const std::size_t j = (run_end + n) % k;  // edge j runs from vertex j - 1 to vertex j
+    if (sides[(j + k - 1) % k] != keep && sides[j] != keep) continue;
+    // Consecutive kept edges j - 1 and j meet in the split polygon's vertex j - 1.
+    if (!out.poly.bounds.empty()) out.origin.push_back(static_cast<std::uint32_t>((j + k - 1) % k));
+    out.poly.bounds.push_back(poly.bounds[j]);
+  }
+  out.poly.bounds.push_back(keep > 0 ? cut : -cut);
+  out.origin.push_back(kNewVertex);  // the last kept edge meets the cut
+  out.origin.push_back(kNewVertex);  // the cut meets the first kept edge
+  return out;
 }
 
 std::vector<int> vertex_sides(const PlanePolygon& poly, const GridPlane& plane, PredicateCounters& counters) {
@@ -86,7 +96,7 @@ PlaneSplit split(const PlanePolygon& poly, const GridPlane& plane, PredicateCoun
   if (!front && !back) return {Side::Coplanar, {}, {}};
   if (!back) return {Side::Front, {}, {}};
   if (!front) return {Side::Back, {}, {}};
-  return {Side::Spanning, part(poly, sides, 1, plane), part(poly, sides, -1, -plane)};
+  return {Side::Spanning, part_of(poly, sides, 1, plane).poly, part_of(poly, sides, -1, plane).poly};
 }
 
 bool is_valid(const PlanePolygon& poly, PredicateCounters& counters) {

@@ -37,7 +37,9 @@ struct PlanePolygon {
 // their neighbours are left out, since they bound nothing (so is the tip of a spike that doubles
 // back along an edge: its two sides are collinear, and the polygon without it has the same area). nullopt when fewer than three points
 // remain, or when the points are not coplanar or not strictly convex.
-std::optional<PlanePolygon> plane_polygon(std::span<const GridPoint> points, std::uint32_t source);
+// When `vertices` is given, it receives the polygon's vertices as grid points, in vertex order.
+std::optional<PlanePolygon> plane_polygon(std::span<const GridPoint> points, std::uint32_t source,
+                                          std::vector<GridPoint>* vertices = nullptr);
 
 // The side of each vertex of `poly` with respect to `plane`: +1, -1 or 0.
 std::vector<int> vertex_sides(const PlanePolygon& poly, const GridPlane& plane, PredicateCounters& counters);
@@ -46,6 +48,17 @@ struct PlaneSplit {
   Side side = Side::Coplanar;
   std::optional<PlanePolygon> front, back;  // set only when side is Spanning
 };
+
+// One part of a split polygon, with where its vertices come from: vertex i of `poly` is vertex
+// origin[i] of the polygon split, or kNewVertex where the cut meets an edge (the last two).
+inline constexpr std::uint32_t kNewVertex = 0xffffffffu;
+struct PolygonPart {
+  PlanePolygon poly;
+  std::vector<std::uint32_t> origin;
+};
+// The part of `poly` on side `keep` (+1 or -1) of `cut`, bounded by `cut` (keep = +1) or its
+// opposite (keep = -1), given the vertices' sides (vertex_sides), which must include both signs.
+PolygonPart part_of(const PlanePolygon& poly, std::span<const int> sides, int keep, const GridPlane& cut);
 
 // Classifies `poly` against `plane`, exactly: Front when no vertex is behind it (and one is in front),
 // Back likewise, Coplanar when every vertex is on it, else Spanning with both parts: the front part

@@ -1,6 +1,7 @@
 #include "geometry/snap.h"
 
 #include <stdexcept>
+#include <utility>
 
 namespace bsp {
 
@@ -16,12 +17,14 @@ Grid grid_of(std::span<const Polygon> input) {
   return Grid::for_box(box);
 }
 
-// The fan from the first point: the triangles that are not collinear.
-std::vector<PlanePolygon> fan(const std::vector<GridPoint>& points, std::uint32_t source) {
-  std::vector<PlanePolygon> out;
+// The fan from the first point: the triangles that are not collinear, with their vertices.
+std::vector<std::pair<PlanePolygon, std::vector<GridPoint>>> fan(const std::vector<GridPoint>& points,
+                                                                 std::uint32_t source) {
+  std::vector<std::pair<PlanePolygon, std::vector<GridPoint>>> out;
+  std::vector<GridPoint> vertices;
   for (std::size_t i = 1; i + 1 < points.size(); ++i) {
     const GridPoint triangle[] = {points[0], points[i], points[i + 1]};
-    if (auto t = plane_polygon(triangle, source)) out.push_back(std::move(*t));
+    if (auto t = plane_polygon(triangle, source, &vertices)) out.emplace_back(std::move(*t), vertices);
   }
   return out;
 }
@@ -29,9 +32,9 @@ std::vector<PlanePolygon> fan(const std::vector<GridPoint>& points, std::uint32_
 }  // namespace
 
 SnappedScene snap_polygons(std::span<const Polygon> input) {
-  SnappedScene out{grid_of(input), {}, {}};
+  SnappedScene out{grid_of(input), {}, {}, {}};
   SnapReport& r = out.report;
-  std::vector<GridPoint> points;
+  std::vector<GridPoint> points, vertices;
   for (std::size_t i = 0; i < input.size(); ++i) {
     const Polygon& poly = input[i];
     if (poly.verts.size() < 3) {
@@ -46,12 +49,13 @@ SnappedScene snap_polygons(std::span<const Polygon> input) {
       points.push_back(q);
     }
     const auto source = static_cast<std::uint32_t>(i);
-    if (auto whole = plane_polygon(points, source)) {
+    if (auto whole = plane_polygon(points, source, &vertices)) {
       ++r.kept_whole;
       out.polygons.push_back(std::move(*whole));
+      out.corners.push_back(vertices);
       continue;
     }
-    std::vector<PlanePolygon> triangles = fan(points, source);
+    auto triangles = fan(points, source);
     if (triangles.empty()) {
       ++r.degenerate;
       r.degenerate_area += area(poly);
@@ -60,11 +64,12 @@ SnappedScene snap_polygons(std::span<const Polygon> input) {
     ++r.fanned;
     r.fan_triangles += triangles.size();
     const Vec3 facing = newell_normal(poly);
-    for (const PlanePolygon& t : triangles) {
+    for (auto& [t, corners] : triangles) {
       const Vec3 n{static_cast<double>(t.support.a), static_cast<double>(t.support.b), static_cast<double>(t.support.c)};
       r.flipped += dot(n, facing) < 0;
+      out.polygons.push_back(std::move(t));
+      out.corners.push_back(std::move(corners));
     }
-    for (PlanePolygon& t : triangles) out.polygons.push_back(std::move(t));
   }
   return out;
 }

@@ -43,6 +43,7 @@ struct SnapReport {
 struct SnappedScene {
   Grid grid;
   std::vector<PlanePolygon> polygons;
+  std::vector<std::vector<GridPoint>> corners;  // parallel to polygons: their vertices, in order
   SnapReport report;
 };
 

@@ -73,6 +73,14 @@ SideCounter::SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng) : ctx
 
 std::vector<SideCounts> SideCounter::operator()(std::span<const std::uint32_t> candidates) const {
   const std::span<const std::uint32_t> counted = sampled_.empty() ? ctx_.ids : std::span<const std::uint32_t>(sampled_);
+  if (ctx_.exact) {
+    std::vector<std::uint32_t> planes;
+    planes.reserve(candidates.size());
+    for (auto id : candidates) planes.push_back(ctx_.exact->plane(id));
+    std::vector<SideCounts> counts(candidates.size());
+    ctx_.exact->count_sides(counted, planes, counts);
+    return counts;
+  }
   std::vector<Plane> planes;
   planes.reserve(candidates.size());
   for (auto id : candidates) planes.push_back(ctx_.planes[ctx_.frags.plane(id)]);

@@ -9,6 +9,7 @@
 #include "common/rng.h"
 #include "geometry/plane.h"
 #include "geometry/tolerance.h"
+#include "split/exact_fragments.h"
 #include "split/fragment_store.h"
 
 namespace bsp {
@@ -28,6 +29,9 @@ struct SplitContext {
   // for this node from it, so a node's choice does not depend on which nodes were built before it
   // or on which thread builds it.
   std::uint64_t node_key = kRootKey;
+  // Set in an exact-kernel build (tree/exact_build.h): frags and planes are then rounded copies of
+  // these exact fragments and planes, under the same ids, and SideCounter counts sides here.
+  const ExactFragments* exact = nullptr;
 
   static constexpr std::uint64_t kRootKey = 0x6b5f0a3d2c1e9f87ULL;
   static constexpr std::uint64_t child_key(std::uint64_t parent, bool front) {

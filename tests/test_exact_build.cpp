@@ -1,0 +1,137 @@
+// The exact kernel's build: trees whose invariants hold when decided exactly, for every kind of
+// heuristic (autopartitions, sampled scorers, cell-measuring naylor, free-plane halving), on scenes
+// made to break tolerances; nothing dropped; determinism; and faults planted in a tree are caught.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "catalog.h"
+#include "geometry/grid_plane_pool.h"
+#include "split/registry.h"
+#include "tree/build.h"
+#include "tree/exact_build.h"
+#include "validate/exact_invariants.h"
+
+using namespace bsp;
+
+namespace {
+
+ExactTree build_exact(const std::vector<Polygon>& polys, std::string_view heuristic, Shape shape = Shape::Strict) {
+  auto splitter = make_splitter(heuristic, {}, 1);
+  BuildOptions options;
+  options.shape = shape;
+  return build_exact_tree(polys, *splitter, options);
+}
+
+double total_area(const FragmentArray& fragments) {
+  double sum = 0;
+  for (const FragmentView f : fragments) sum += area(f.polygon());
+  return sum;
+}
+
+void expect_valid(const ExactTree& t, const std::string& what) {
+  const ExactInvariantReport r = check_exact_invariants(t);
+  EXPECT_TRUE(r.ok()) << what << ": " << r.violations << " violations, first: "
+                      << (r.first_problems.empty() ? "" : r.first_problems.front());
+}
+
+}  // namespace
+
+TEST(ExactBuild, EveryKindOfHeuristicMakesTreesWhoseInvariantsHoldExactly) {
+  for (const char* scene : {"random-triangles", "near-degenerate", "coplanar-heavy", "cyclic-overlap"}) {
+    const Scene s = make_scene(scene, {{"n", "150"}});
+    for (const char* heuristic : {"first", "random", "crystal", "naylor", "halving", "min-relation"}) {
+      const ExactTree t = build_exact(s.polygons, heuristic);
+      expect_valid(t, std::string(scene) + " " + heuristic);
+      EXPECT_EQ(t.tree.stats.dropped_slivers, 0u);
+      EXPECT_GT(t.exact.sides.predicates.filtered, 0u);
+    }
+    expect_valid(build_exact(s.polygons, "crystal", Shape::Coarse), std::string(scene) + " coarse");
+  }
+}
+
+// The near-degenerate scene's features are 1e-9 of its diagonal: the float kernel drops slivers
+// at its tolerance, the exact one keeps every piece, and the pieces cover the input's area.
+TEST(ExactBuild, NearDegenerateSceneLosesNothingTheFloatKernelDrops) {
+  const Scene s = make_scene("near-degenerate", {{"n", "1000"}});
+  auto splitter = make_splitter("crystal", {}, 1);
+  const Tree float_tree = build_tree(s.polygons, *splitter);
+  EXPECT_GT(float_tree.stats.dropped_slivers + float_tree.stats.dropped_input, 0u);
+  const ExactTree t = build_exact(s.polygons, "crystal");
+  expect_valid(t, "near-degenerate crystal");
+  EXPECT_EQ(t.tree.stats.dropped_slivers, 0u);
+  EXPECT_EQ(t.exact.snap.degenerate, 0u);
+  const double input = t.tree.stats.input_area;
+  EXPECT_NEAR(total_area(t.tree.fragments), input, 1e-6 * input);
+}
+
+TEST(ExactBuild, SameInputSameTreeBitForBit) {
+  const Scene s = make_scene("random-triangles", {{"n", "300"}, {"seed", "4"}});
+  for (const char* heuristic : {"crystal", "halving"}) {
+    const ExactTree a = build_exact(s.polygons, heuristic), b = build_exact(s.polygons, heuristic);
+    ASSERT_EQ(a.tree.nodes.size(), b.tree.nodes.size());
+    for (std::size_t i = 0; i < a.tree.nodes.size(); ++i) {
+      EXPECT_EQ(a.tree.nodes[i].plane, b.tree.nodes[i].plane);
+      EXPECT_EQ(a.tree.nodes[i].front, b.tree.nodes[i].front);
+      EXPECT_EQ(a.tree.nodes[i].first, b.tree.nodes[i].first);
+    }
+    EXPECT_EQ(a.planes, b.planes);
+    ASSERT_EQ(a.fragments.size(), b.fragments.size());
+    for (std::size_t i = 0; i < a.fragments.size(); ++i) EXPECT_EQ(a.fragments[i].bounds, b.fragments[i].bounds);
+  }
+}
+
+TEST(ExactBuild, HalvingsFreePlanesAreRoundedToGridPlanes) {
+  const Scene s = make_scene("random-triangles", {{"n", "400"}});
+  const ExactTree t = build_exact(s.polygons, "halving");
+  EXPECT_GT(t.exact.free_planes, 10u);
+  EXPECT_EQ(t.exact.free_planes_beyond, 0u);
+  expect_valid(t, "halving");
+}
+
+// Faults planted in a correct tree: children swapped (fragments on the wrong side of their
+// parent's plane), and a fragment's support replaced by another plane (not in its node's plane).
+TEST(ExactInvariants, CatchSwappedChildrenAndAFragmentOffItsNodesPlane) {
+  const Scene s = make_scene("random-triangles", {{"n", "100"}});
+  const ExactTree good = build_exact(s.polygons, "crystal");
+  ASSERT_TRUE(check_exact_invariants(good).ok());
+  ExactTree swapped = good;
+  std::uint32_t node = 0;
+  while (good.tree.nodes[node].front == kNull || good.tree.nodes[node].back == kNull) ++node;
+  // Flipping the node's plane swaps which side each subtree is on, and keeps the pre-order intact.
+  swapped.tree.nodes[node].plane = PlanePool::flip(swapped.tree.nodes[node].plane);
+  EXPECT_FALSE(check_exact_invariants(swapped).ok());
+  ExactTree moved = good;
+  moved.fragments[0].support = moved.fragments.back().support;
+  EXPECT_FALSE(check_exact_invariants(moved).ok());
+}
+
+TEST(GridPlane, RoundedFreePlanesStayInBoundsAndNearTheirPlane) {
+  const Grid grid = Grid::for_box(Box{{-3, -1, -2}, {5, 7, 1}});
+  Rng rng(5);
+  for (int i = 0; i < 10000; ++i) {
+    const Vec3 n = normalize(Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)});
+    const Vec3 through{rng.uniform(-3, 5), rng.uniform(-1, 7), rng.uniform(-2, 1)};
+    const Plane p = Plane::through(n, through);
+    const auto g = round_plane(p, grid);
+    ASSERT_TRUE(g.has_value());
+    const Int128 limit = Int128{1} << 41;
+    EXPECT_TRUE(g->a < limit && g->a > -limit && g->b < limit && g->b > -limit && g->c < limit && g->c > -limit);
+    const Plane back = scene_plane(*g, grid);
+    EXPECT_LT(length(cross(back.n, n)), 0x1p-38);  // the normal turns by at most about 2^-39 rad
+    EXPECT_LT(std::abs(back.distance(through)), 1e-11);
+  }
+  EXPECT_FALSE(round_plane(Plane{{1, 0, 0}, -1e20}, grid).has_value());  // beyond every grid point
+}
+
+TEST(GridPlanePool, OnePlaneMadeFromDifferentPointsHasOneIndex) {
+  GridPlanePool pool(Grid::for_box(Box{{0, 0, 0}, {1, 1, 1}}));
+  const auto p = plane_through({0, 0, 5}, {4, 0, 5}, {0, 4, 5});
+  const auto q = plane_through({1, 1, 5}, {3, 1, 5}, {1, 3, 5});  // the same plane, a smaller normal
+  const std::uint32_t i = pool.add(*p);
+  EXPECT_EQ(pool.add(*q), i);
+  EXPECT_EQ(pool.add(-*q), PlanePool::flip(i));
+  EXPECT_EQ(pool[i], canonical(*p));
+  EXPECT_EQ(pool[i].c, 1);
+  EXPECT_NE(pool.add(*plane_through({0, 0, 6}, {4, 0, 6}, {0, 4, 6})) >> 1, i >> 1);
+}
