@@ -5,6 +5,7 @@
 //       float_seconds, exact_seconds: medians over the iterations (exact: snapping to frozen tree,
 //           without the view's vertices); exact_vs_float: their ratio;
 //       view_seconds: median time to compute the exact tree's vertices for output;
+//       snap_seconds, load_seconds, choose_seconds: medians of the exact build's stages (ExactBuildStats);
 //       filter_rate: side tests the floating-point filter decided, of all (tree/exact_build.h);
 //       exact_tests, on_grid_tests: the others, decided in wide integers and at input corners;
 //       float_fragments, exact_fragments; float_dropped: slivers and inputs the float kernel dropped.
@@ -26,7 +27,7 @@ namespace {
 
 void bm_kernel(benchmark::State& state, const Scene* s, std::string heuristic) {
   omp_set_num_threads(1);
-  std::vector<double> float_times, exact_times, view_times;
+  std::vector<double> float_times, exact_times, view_times, snap_times, load_times, choose_times;
   ExactBuildStats stats;
   std::uint64_t float_fragments = 0, exact_fragments = 0, float_dropped = 0;
   for (auto _ : state) {
@@ -42,6 +43,9 @@ void bm_kernel(benchmark::State& state, const Scene* s, std::string heuristic) {
     const ExactTree t = build_exact_tree(s->polygons, *splitter);
     exact_times.push_back(t.tree.stats.build_seconds);
     view_times.push_back(t.exact.view_seconds);
+    snap_times.push_back(t.exact.snap_seconds);
+    load_times.push_back(t.exact.load_seconds);
+    choose_times.push_back(t.tree.stats.choose_seconds);
     stats = t.exact;
     exact_fragments = t.fragments.size();
     benchmark::ClobberMemory();
@@ -54,6 +58,9 @@ void bm_kernel(benchmark::State& state, const Scene* s, std::string heuristic) {
   state.counters["exact_seconds"] = e;
   state.counters["exact_vs_float"] = e / f;
   state.counters["view_seconds"] = median(view_times);
+  state.counters["snap_seconds"] = median(snap_times);
+  state.counters["load_seconds"] = median(load_times);
+  state.counters["choose_seconds"] = median(choose_times);
   state.counters["filter_rate"] = tests > 0 ? static_cast<double>(c.predicates.filtered) / tests : 1.0;
   state.counters["exact_tests"] = static_cast<double>(c.predicates.exact);
   state.counters["on_grid_tests"] = static_cast<double>(c.on_grid);

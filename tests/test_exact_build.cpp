@@ -135,3 +135,20 @@ TEST(GridPlanePool, OnePlaneMadeFromDifferentPointsHasOneIndex) {
   EXPECT_EQ(pool[i].c, 1);
   EXPECT_NE(pool.add(*plane_through({0, 0, 6}, {4, 0, 6}, {0, 4, 6})) >> 1, i >> 1);
 }
+
+// canonical divides by the coefficients' greatest common divisor, also when it exceeds 64 bits.
+TEST(GridPlane, CanonicalFormForgetsACommonFactor) {
+  Rng rng(9);
+  for (int i = 0; i < 2000; ++i) {
+    // Coefficients below 2^62 times a factor below 2^64: the products stay below 2^127.
+    const auto coordinate = [&] { return static_cast<std::int64_t>(rng.below(std::uint64_t{1} << 20)) - (std::int64_t{1} << 19); };
+    const auto p = plane_through({coordinate(), coordinate(), coordinate()}, {coordinate(), coordinate(), coordinate()},
+                                 {coordinate(), coordinate(), coordinate()});
+    if (!p) continue;
+    const GridPlane c = canonical(*p);
+    const Int128 k = static_cast<Int128>(1 + rng.below(std::uint64_t{1} << 54)) * static_cast<Int128>(1 + rng.below(1000));
+    const GridPlane scaled{c.a * k, c.b * k, c.c * k, c.d * k};
+    EXPECT_EQ(canonical(scaled), c);
+    EXPECT_EQ(canonical(-scaled), -c);
+  }
+}

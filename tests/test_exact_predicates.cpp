@@ -443,6 +443,29 @@ TEST(PlanePolygon, VerticesAreTheGivenPoints) {
   EXPECT_GT(checked, 1500);
 }
 
+namespace {
+
+std::uint64_t box_decided = 0;
+
+// The cached filters of the exact fragments against the exact sides: a box that decides puts every
+// vertex strictly on its side, and a vertex's cofactor filter that decides agrees.
+void check_box_and_vertex_filters(const PlanePolygon& poly, const GridPlane& plane, PredicateCounters& counters) {
+  std::vector<VertexCofactors> cofactors;
+  const PlaneApprox approx = approximate(plane);
+  const std::vector<int> sides = vertex_sides(poly, plane, counters);
+  for (std::size_t i = 0; i < poly.size(); ++i) {
+    cofactors.push_back(*vertex_cofactors(poly.support, poly.before(i), poly.after(i), counters));
+    const auto f = detail::filtered_side(cofactors.back(), approx);
+    if (f.decided) ASSERT_EQ(f.sign, sides[i]);
+  }
+  const auto whole = detail::filtered_box_side(filter_box(cofactors.data(), cofactors.size()), approx);
+  if (!whole.decided) return;
+  ++box_decided;
+  for (int side : sides) ASSERT_EQ(side, whole.sign);
+}
+
+}  // namespace
+
 // Splitting by planes through random grid points, through a vertex (grazing) and through two
 // vertices (along a diagonal), five levels deep: every part is a valid polygon on its side of
 // the plane, the parts share their cut's two vertices exactly and keep the area.
@@ -474,6 +497,8 @@ TEST(PlanePolygon, SplitPartsAreValidOnTheirSidesAndKeepTheArea) {
         }
         const PlaneSplit s = split(poly, *plane, counters);
         ++splits;
+        check_box_and_vertex_filters(poly, *plane, counters);
+        check_box_and_vertex_filters(poly, random_plane(rng, std::int64_t{1} << 38), counters);
         if (s.side != Side::Spanning) {
           next.push_back(poly);
           continue;
@@ -517,6 +542,7 @@ TEST(PlanePolygon, SplitPartsAreValidOnTheirSidesAndKeepTheArea) {
   EXPECT_GT(grazing_or_diagonal, 100u);
   EXPECT_GT(counters.filtered, 0u);
   (void)splits;
+  EXPECT_GT(box_decided, 100u);  // the planes through other pieces decide whole pieces
 }
 
 TEST(PlanePolygon, BoundsInClockwiseOrderAreInvalid) {

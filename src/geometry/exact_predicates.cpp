@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace bsp {
 
@@ -132,10 +133,20 @@ PlaneApprox approximate(const GridPlane& p) { return {to_double(p.a), to_double(
 
 std::optional<VertexCofactors> vertex_cofactors(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3,
                                                 PredicateCounters& counters) {
-  const int n = normals_sign(p1, p2, p3, counters);
-  if (n == 0) return std::nullopt;
-  const Matrix<double, 4> m = planes<double>(p1, p2, p3, p1, to_double);      // row 3 unused
-  const Matrix<double, 4> mag = planes<double>(p1, p2, p3, p1, to_magnitude);
+  return vertex_cofactors(p1, p2, p3, approximate(p1), approximate(p2), approximate(p3), counters);
+}
+
+std::optional<VertexCofactors> vertex_cofactors(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3,
+                                                const PlaneApprox& a1, const PlaneApprox& a2, const PlaneApprox& a3,
+                                                PredicateCounters& counters) {
+  // Rows (a, b, c, d) rounded once each; the magnitudes are the rounded values' (rounding to
+  // nearest is symmetric, so |fl(x)| = fl(|x|), as to_magnitude computes them).
+  const PlaneApprox* rows[] = {&a1, &a2, &a3};
+  Matrix<double, 4> m{}, mag{};
+  for (int i = 0; i < 3; ++i) {
+    m[i] = {rows[i]->a, rows[i]->b, rows[i]->c, rows[i]->d};
+    for (int j = 0; j < 4; ++j) mag[i][j] = std::abs(m[i][j]);
+  }
   // The minor of rows 0..2 without column `skip`, in the column order the expansion above uses.
   const auto minor = [](const Matrix<double, 4>& a, int skip) {
     Matrix<double, 3> out{};
@@ -145,13 +156,56 @@ std::optional<VertexCofactors> vertex_cofactors(const GridPlane& p1, const GridP
     return out;
   };
   VertexCofactors v;
+  double permanent_n = 0;
   for (int j = 0; j < 4; ++j) {
-    const double sign = ((3 + j) % 2 == 0 ? 1.0 : -1.0) * n;  // (-1)^(3 + j) * sign(det N)
-    v.c[j] = sign * det3<double, false>(minor(m, j));
-    const double error = (kFilterRoundings3 + 1) * 0x1p-53 * det3<double, true>(minor(mag, j));
+    v.c[j] = ((3 + j) % 2 == 0 ? 1.0 : -1.0) * det3<double, false>(minor(m, j));  // (-1)^(3 + j) minor
+    const double permanent = det3<double, true>(minor(mag, j));
+    const double error = (kFilterRoundings3 + 1) * 0x1p-53 * permanent;
     (j == 3 ? v.error_d : v.error_abc) = std::max(j == 3 ? v.error_d : v.error_abc, error);
+    if (j == 3) permanent_n = permanent;
   }
+  // C_3 is det N computed as filtered_normals_sign does: its sign, or the exact one.
+  int n = 0;
+  if (const auto f = decide(v.c[3], permanent_n, kFilterRoundings3); f.decided) {
+    ++counters.filtered;
+    n = f.sign;
+  } else {
+    ++counters.exact;
+    n = detail::exact_normals_sign(p1, p2, p3);
+  }
+  if (n == 0) return std::nullopt;
+  for (double& c : v.c) c *= n;
   return v;
+}
+
+FilterBox filter_box(const VertexCofactors* vertices, std::size_t count) {
+  constexpr double u = 0x1p-53;
+  FilterBox box;
+  double lo[3], hi[3];
+  for (int j = 0; j < 3; ++j) {
+    lo[j] = std::numeric_limits<double>::infinity();
+    hi[j] = -lo[j];
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const VertexCofactors& v = vertices[i];
+    const double w = v.c[3];
+    if (!(w > 2 * v.error_d)) return box;  // unbounded
+    const double below = w - v.error_d;
+    for (int j = 0; j < 3; ++j) {
+      const double x = v.c[j] / w;
+      const double delta = (v.error_abc + std::abs(x) * (1 + 2 * u) * v.error_d) / below + 2 * u * std::abs(x);
+      const double widened = (delta + 4 * u * std::abs(x)) * (1 + 0x1p-40);
+      lo[j] = std::min(lo[j], x - widened);
+      hi[j] = std::max(hi[j], x + widened);
+    }
+  }
+  for (int j = 0; j < 3; ++j) {
+    box.centre[j] = 0.5 * (lo[j] + hi[j]);
+    box.half[j] = std::max(hi[j] - box.centre[j], box.centre[j] - lo[j]) * (1 + 0x1p-48);
+    if (!std::isfinite(box.centre[j]) || !std::isfinite(box.half[j])) return box;
+  }
+  box.bounded = count > 0;
+  return box;
 }
 
 std::optional<Vec3> vertex_position(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const Grid& grid) {

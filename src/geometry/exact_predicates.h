@@ -88,6 +88,31 @@ PlaneApprox approximate(const GridPlane& p);
 // The cofactors of the point where p1, p2 and p3 meet; nullopt when they do not meet in one point.
 std::optional<VertexCofactors> vertex_cofactors(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3,
                                                 PredicateCounters& counters);
+// The same with the planes' approximations given (approximate(p_i)), for callers that keep them:
+// converting a 128-bit coefficient is a library call.
+std::optional<VertexCofactors> vertex_cofactors(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3,
+                                                const PlaneApprox& a1, const PlaneApprox& a2, const PlaneApprox& a3,
+                                                PredicateCounters& counters);
+
+// A box in grid coordinates containing the exact vertices of a polygon, from their cofactors, so
+// that one test can decide a whole polygon against a plane (as the float kernel's bounding sphere
+// does, with proven margins). Vertex X = C / C_3 is rounded to x~ = fl(C~ / C~_3), which is within
+// delta = (e_abc + |x~| (1 + 2u) e_d) / (C~_3 - e_d) + 2u |x~| of X per axis when C~_3 > e_d
+// (from |C - C~| <= e_abc and |C_3 - C~_3| <= e_d); the box takes each x~ -+ (delta + 4u|x~|)
+// (1 + 2^-40), whose rounding then keeps X inside, and is stored as centre and half-widths widened
+// by 2^-48 so that centre +- half still covers it. A vertex with C~_3 <= 2 e_d leaves the box
+// unbounded (it decides nothing).
+//
+// The test of a plane: the plane's value over the box lies within v -+ r, v = a . centre + d and
+// r = |a| . half; computed in doubles, v is within 2^-50 S of the true value (S = sum of the
+// absolute terms, as above) and r is at most 2^-50 r too small. The box is decided when |v~| exceeds
+// r~ (1 + 2^-45) + 2^-45 S~, a margin that also covers the rounding of that expression.
+struct FilterBox {
+  double centre[3] = {0, 0, 0};
+  double half[3] = {0, 0, 0};
+  bool bounded = false;
+};
+FilterBox filter_box(const VertexCofactors* vertices, std::size_t count);
 
 // The stages on their own, for tests: a filter result is `decided` only when its bound allows.
 namespace detail {
@@ -108,6 +133,19 @@ inline MaybeSign filtered_side(const VertexCofactors& v, const PlaneApprox& p) {
   const double threshold = 0x1p-50 * s + (1 + 0x1p-40) * e;
   if (sum > threshold) return {true, 1};
   if (sum < -threshold) return {true, -1};
+  return {false, 0};
+}
+// +1 when every point of the box is strictly in front of the plane, -1 strictly behind, else
+// undecided.
+inline MaybeSign filtered_box_side(const FilterBox& b, const PlaneApprox& p) {
+  if (!b.bounded) return {false, 0};
+  const double t0 = p.a * b.centre[0], t1 = p.b * b.centre[1], t2 = p.c * b.centre[2];
+  const double v = ((t0 + t1) + t2) + p.d;
+  const double s = ((std::abs(t0) + std::abs(t1)) + std::abs(t2)) + std::abs(p.d);
+  const double r = (std::abs(p.a) * b.half[0] + std::abs(p.b) * b.half[1]) + std::abs(p.c) * b.half[2];
+  const double margin = r * (1 + 0x1p-45) + 0x1p-45 * s;
+  if (v > margin) return {true, 1};
+  if (v < -margin) return {true, -1};
   return {false, 0};
 }
 }  // namespace detail

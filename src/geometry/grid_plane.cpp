@@ -30,7 +30,21 @@ Int128 magnitude(Int128 v) { return v < 0 ? -v : v; }
 
 using UInt128 = unsigned __int128;
 
-// Binary GCD [Knuth, TAOCP vol. 2, 4.5.2, algorithm B]; gcd(0, v) = v.
+// Binary GCD [Knuth, TAOCP vol. 2, 4.5.2, algorithm B]; gcd(0, v) = v. Each step removes at least
+// a bit, and once both numbers fit 64 bits the steps run in 64-bit registers.
+std::uint64_t gcd64(std::uint64_t u, std::uint64_t v) {
+  if (u == 0) return v;
+  if (v == 0) return u;
+  const int shift = __builtin_ctzll(u | v);
+  u >>= __builtin_ctzll(u);
+  while (v != 0) {
+    v >>= __builtin_ctzll(v);
+    if (u > v) std::swap(u, v);
+    v -= u;
+  }
+  return u << shift;
+}
+
 UInt128 gcd(UInt128 u, UInt128 v) {
   if (u == 0) return v;
   if (v == 0) return u;
@@ -40,19 +54,23 @@ UInt128 gcd(UInt128 u, UInt128 v) {
   };
   const int shift = std::min(trailing(u), trailing(v));
   u >>= trailing(u);
-  while (v != 0) {
-    v >>= trailing(v);
+  v >>= trailing(v);
+  while ((u >> 64) != 0 || (v >> 64) != 0) {  // both odd here
     if (u > v) std::swap(u, v);
     v -= u;
+    if (v == 0) return u << shift;
+    v >>= trailing(v);
   }
-  return u << shift;
+  return static_cast<UInt128>(gcd64(static_cast<std::uint64_t>(u), static_cast<std::uint64_t>(v))) << shift;
 }
 
 }  // namespace
 
 GridPlane canonical(const GridPlane& p) {
   const auto mag = [](Int128 v) { return static_cast<UInt128>(v < 0 ? -v : v); };
-  const UInt128 g = gcd(gcd(mag(p.a), mag(p.b)), gcd(mag(p.c), mag(p.d)));
+  UInt128 g = gcd(mag(p.a), mag(p.b));
+  if (g != 1) g = gcd(g, mag(p.c));
+  if (g != 1) g = gcd(g, mag(p.d));
   if (g <= 1) return p;
   const auto div = [g](Int128 v) { return v < 0 ? -static_cast<Int128>(static_cast<UInt128>(-v) / g) : static_cast<Int128>(static_cast<UInt128>(v) / g); };
   return {div(p.a), div(p.b), div(p.c), div(p.d)};

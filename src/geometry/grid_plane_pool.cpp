@@ -34,6 +34,13 @@ std::size_t GridPlanePool::Hash::operator()(const GridPlane& p) const {
   return h;
 }
 
+void GridPlanePool::reserve(std::size_t pairs) {
+  planes_.reserve(pairs);
+  approx_.reserve(pairs);
+  scene_.reserve(pairs);
+  index_.reserve(pairs);
+}
+
 std::uint32_t GridPlanePool::add(const GridPlane& p) {
   const GridPlane c = canonical(p);
   const bool as_stored = stored_orientation(c);

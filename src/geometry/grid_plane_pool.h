@@ -29,6 +29,8 @@ class GridPlanePool {
 
   // The index of `p` (made canonical) in its own orientation, added when new.
   std::uint32_t add(const GridPlane& p);
+  // Room for this many pairs without rehashing.
+  void reserve(std::size_t pairs);
   GridPlane operator[](std::uint32_t i) const { return (i & 1u) ? -planes_[i >> 1] : planes_[i >> 1]; }
   PlaneApprox approx(std::uint32_t i) const {
     const PlaneApprox& a = approx_[i >> 1];

@@ -26,9 +26,12 @@ nlohmann::json to_json(const ExactBuildStats& s) {
             {"exact", c.predicates.exact},
             {"on_grid", c.on_grid},
             {"coplanar_by_index", c.coplanar_by_index},
+            {"boxes", c.boxes},
             {"filter_rate", tests ? static_cast<double>(c.predicates.filtered) / static_cast<double>(tests) : 1.0}}},
           {"free_planes", s.free_planes},
           {"free_planes_beyond", s.free_planes_beyond},
+          {"snap_seconds", s.snap_seconds},
+          {"load_seconds", s.load_seconds},
           {"view_seconds", s.view_seconds}};
 }
 

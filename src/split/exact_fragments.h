@@ -5,7 +5,9 @@
 // never decides a side: a splitter that counts sides gets the exact counts (SideCounter reads
 // SplitContext::exact), and the build partitions with classify() and split() here.
 //
-// A side test of a vertex, cheapest first (PredicateCounters):
+// A fragment is first tested whole, against a box in grid coordinates that contains its exact
+// vertices (FilterBox): most fragments lie clear of a plane, as in the float kernel's bounding-sphere
+// test (`boxes` counts those decided so). Otherwise each vertex is tested, cheapest way first:
 //  - the filter on the vertex's cached cofactors (geometry/exact_predicates.h: VertexCofactors);
 //  - an input corner (a vertex made by two bounds of its input polygon, so a grid point): the
 //    plane's value there in 128-bit integers, exact by grid_plane.h's bounds (`on_grid`);
@@ -30,6 +32,7 @@ struct ExactSideCounters {
   PredicateCounters predicates;  // filtered, and decided in wide integers
   std::uint64_t on_grid = 0;     // decided at an input corner in 128-bit integers
   std::uint64_t coplanar_by_index = 0;  // fragments found coplanar by their pooled support
+  std::uint64_t boxes = 0;              // fragments decided whole by their box
 };
 
 class ExactFragments {
@@ -40,6 +43,8 @@ class ExactFragments {
   // corners), given in vertex order, or is empty when none is known.
   std::uint32_t add(PlanePolygon poly, std::span<const GridPoint> corners = {});
   void release(std::uint32_t id);
+  // The fragment's plane polygon, moved out; the fragment is released.
+  PlanePolygon take(std::uint32_t id);
 
   const PlanePolygon& polygon(std::uint32_t id) const { return poly_[id]; }
   std::uint32_t plane(std::uint32_t id) const { return rounded_.plane(id); }  // pooled support
@@ -70,8 +75,11 @@ class ExactFragments {
   // Side of vertex i of fragment id: +1, -1 or 0.
   int vertex_side(std::uint32_t id, std::size_t i, const GridPlane& plane, const PlaneApprox& approx) const;
   // Fills sides_ for the fragment's vertices; returns Front/Back/Coplanar/Spanning, stopping at
-  // the first vertex that makes it Spanning unless `all`.
+  // the first vertex that makes it Spanning unless `all`. vertex_sides skips the whole-fragment tests.
   Side sides(std::uint32_t id, std::uint32_t plane, bool all) const;
+  Side vertex_sides(std::uint32_t id, std::uint32_t plane, const PlaneApprox& approx, bool all) const;
+  void count_block(std::span<const std::uint32_t> ids, std::span<const std::uint32_t> planes,
+                   std::span<SideCounts> out) const;
   std::uint32_t add_part(PolygonPart part, const std::vector<Vertex>& from);
   std::uint32_t store(PlanePolygon poly, std::vector<Vertex> verts);
 
@@ -79,9 +87,12 @@ class ExactFragments {
   FragmentStore rounded_;
   std::vector<PlanePolygon> poly_;          // by id
   std::vector<std::vector<Vertex>> verts_;  // by id, parallel to poly_[id]'s vertices
+  std::vector<FilterBox> box_;              // by id
   // Counts and scratch, not state: a store is used by one thread at a time.
   mutable ExactSideCounters counters_;
   mutable std::vector<int> sides_;
+  std::vector<PlaneApprox> bounds_approx_;
+
 };
 
 }  // namespace bsp

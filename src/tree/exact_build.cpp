@@ -162,7 +162,7 @@ class ExactBuilder {
 // The frozen tree: planes renumbered in first-use order (nodes, then fragments), as freeze() does
 // for a float build, with the grid planes beside them, and the fragments' plane polygons in node
 // order. The view's vertices are left for make_view.
-void freeze_exact(std::vector<BuiltNode>& built, const ExactFragments& frags, ExactTree& out) {
+void freeze_exact(std::vector<BuiltNode>& built, ExactFragments& frags, ExactTree& out) {
   const GridPlanePool& pool = frags.planes();
   std::vector<std::uint32_t> pair(pool.size() / 2, kNull);
   const auto remap = [&](std::uint32_t p) {
@@ -184,7 +184,7 @@ void freeze_exact(std::vector<BuiltNode>& built, const ExactFragments& frags, Ex
   for (BuiltNode& n : built)
     for (auto id : n.fragments) {
       out.tree.fragment_plane.push_back(remap(frags.plane(id)));
-      out.fragments.push_back(frags.polygon(id));
+      out.fragments.push_back(frags.take(id));
     }
 }
 
@@ -216,7 +216,9 @@ ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, c
     throw std::invalid_argument("the exact kernel builds strict and coarse trees recursively");
   const auto start = Clock::now();
   SnappedScene snapped = snap_polygons(input);
+  const double snap_seconds = seconds_since(start);
   ExactTree out;
+  out.exact.snap_seconds = snap_seconds;
   out.grid = snapped.grid;
   out.exact.snap = snapped.report;
   Tree& tree = out.tree;
@@ -231,7 +233,9 @@ ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, c
   for (const Polygon& p : input) stats.input_area += area(p);
   stats.dropped_area = snapped.report.degenerate_area;
 
+  const auto load = Clock::now();
   GridPlanePool pool(snapped.grid);
+  pool.reserve(snapped.polygons.size());
   ExactFragments frags(pool);
   std::vector<std::uint32_t> ids;
   ids.reserve(snapped.polygons.size());
@@ -239,6 +243,7 @@ ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, c
     ids.push_back(frags.add(std::move(snapped.polygons[i]), snapped.corners[i]));
   snapped.polygons = {};
   snapped.corners = {};
+  out.exact.load_seconds = seconds_since(load);
 
   std::vector<BuiltNode> built =
       ExactBuilder(frags, splitter, options.shape, tree.tol, tree.bounds, stats, out.exact).run(std::move(ids));

@@ -43,7 +43,11 @@ struct ExactBuildStats {
   ExactSideCounters sides;
   std::uint64_t free_planes = 0;         // free planes rounded to grid planes
   std::uint64_t free_planes_beyond = 0;  // free planes that missed the grid (the node fell back)
-  double view_seconds = 0.0;             // computing the view's vertices (not in build_seconds)
+  // Where build_seconds went besides choosing (BuildStats::choose_seconds): snapping the input,
+  // loading it (vertex cofactors, pooling the supports), and the rest of the build loop and freezing.
+  double snap_seconds = 0.0;
+  double load_seconds = 0.0;
+  double view_seconds = 0.0;  // computing the view's vertices (not in build_seconds)
 };
 
 struct ExactTree {
