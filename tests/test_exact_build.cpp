@@ -11,6 +11,7 @@
 #include "tree/build.h"
 #include "tree/exact_build.h"
 #include "validate/exact_invariants.h"
+#include "validate/exact_order_check.h"
 
 using namespace bsp;
 
@@ -151,4 +152,45 @@ TEST(GridPlane, CanonicalFormForgetsACommonFactor) {
     EXPECT_EQ(canonical(scaled), c);
     EXPECT_EQ(canonical(-scaled), -c);
   }
+}
+
+// The exact order check on the scene made to defeat tolerances: no pair in the wrong order, and
+// no tie (the float kernel's check leaves thousands of pairs to its tolerance there).
+TEST(ExactValidation, NearDegenerateOrdersHaveNoViolationAndNoTie) {
+  const Scene s = make_scene("near-degenerate", {{"n", "300"}});
+  const ExactTree t = build_exact(s.polygons, "crystal");
+  ValidationSettings settings;
+  settings.views = 2;
+  const ExactValidationReport r = validate_exact_tree(t, settings);
+  EXPECT_EQ(r.report.views, 2);
+  EXPECT_GT(r.report.pairs_checked, 1000u);
+  EXPECT_EQ(r.report.violations, 0u);
+  EXPECT_EQ(r.report.ties(), 0u);
+  EXPECT_EQ(r.eyes_beyond, 0u);
+}
+
+// A node whose plane is flipped sends the traversal to the wrong side first: the check must see it.
+TEST(ExactValidation, CatchesAnOrderFromAFlippedPlane) {
+  const Scene s = make_scene("random-triangles", {{"n", "200"}});
+  ExactTree t = build_exact(s.polygons, "crystal");
+  ValidationSettings settings;
+  settings.views = 2;
+  ASSERT_EQ(validate_exact_tree(t, settings).report.violations, 0u);
+  t.tree.nodes[0].plane = PlanePool::flip(t.tree.nodes[0].plane);
+  EXPECT_GT(validate_exact_tree(t, settings).report.violations, 0u);
+}
+
+// Two unit squares in one plane overlapping, and a third touching them along an edge: the exact
+// check calls the first pair coplanar ties and never judges a true tie as a violation.
+TEST(ExactValidation, CoplanarOverlapsAreTiesAndNothingElseIs) {
+  const auto square = [](double x0, double z, std::uint32_t source) {
+    return Polygon{{{{x0, 0, z}}, {{x0 + 1, 0, z}}, {{x0 + 1, 1, z}}, {{x0, 1, z}}}, source};
+  };
+  std::vector<Polygon> polys{square(0, 0, 0), square(0.5, 0, 1), square(3, 2, 2)};
+  const ExactTree t = build_exact(polys, "first");
+  ValidationSettings settings;
+  settings.views = 4;
+  const ExactValidationReport r = validate_exact_tree(t, settings);
+  EXPECT_EQ(r.report.violations, 0u);
+  EXPECT_GT(r.report.ties_coplanar, 0u);
 }

@@ -1,0 +1,215 @@
+#include "validate/exact_order_check.h"
+
+#include <algorithm>
+#include <chrono>
+#include <nlohmann/json.hpp>
+
+#include "tree/exact_traverse.h"
+#include "validate/embree_scene.h"
+
+namespace bsp {
+
+namespace {
+
+using Wide = WideInt<5>;
+constexpr std::size_t kRaysPerBatch = 64;
+
+Wide wide(std::int64_t v) { return Wide(Int128{v}); }
+
+struct ExactRay {
+  GridPoint eye, dir;  // points eye + t dir
+};
+
+// The plane's value at the eye and its normal's product with the direction.
+struct Meeting {
+  Wide value, slope;  // S(E), A . D
+};
+
+Meeting meeting(const GridPlane& p, const ExactRay& r) {
+  return {Wide(p.a) * wide(r.eye.x) + Wide(p.b) * wide(r.eye.y) + Wide(p.c) * wide(r.eye.z) + Wide(p.d),
+          Wide(p.a) * wide(r.dir.x) + Wide(p.b) * wide(r.dir.y) + Wide(p.c) * wide(r.dir.z)};
+}
+
+// An exact hit: t = num / den with den > 0.
+struct ExactHit {
+  std::uint32_t fragment = 0;
+  Wide num, den;
+};
+
+std::optional<ExactHit> exact_hit(const PlanePolygon& poly, std::uint32_t fragment, const ExactRay& r) {
+  Meeting s = meeting(poly.support, r);
+  if (s.slope.sign() == 0) return std::nullopt;
+  if (s.slope.sign() < 0) {  // the same t with a positive denominator
+    s.value = -s.value;
+    s.slope = -s.slope;
+  }
+  const Wide num = -s.value;
+  if (num.sign() < 0) return std::nullopt;  // behind the eye
+  for (const GridPlane& b : poly.bounds) {
+    const Meeting m = meeting(b, r);
+    // B(E + t D) * den = B(E) den + (B . D) num, den > 0.
+    if ((m.value * s.slope + m.slope * num).sign() < 0) return std::nullopt;
+  }
+  return ExactHit{fragment, num, s.slope};
+}
+
+// The sign of t_a - t_b.
+int compare(const ExactHit& a, const ExactHit& b) { return (a.num * b.den - b.num * a.den).sign(); }
+
+std::uint64_t unordered_key(std::uint32_t a, std::uint32_t b) {
+  return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+}
+
+struct Tally {
+  std::vector<std::uint64_t> checked, violating;  // unordered pair keys
+  std::uint64_t hits = 0, hit_pairs = 0, coplanar = 0, touching = 0, refused = 0;
+};
+
+class ViewCheck {
+ public:
+  ViewCheck(const ExactTree& t, const GridPoint& eye, std::span<const std::uint32_t> order)
+      : t_(t), eye_(eye), pos_(t.fragments.size()) {
+    for (std::uint32_t i = 0; i < order.size(); ++i) pos_[order[i]] = i;
+  }
+
+  // The exact ray toward `target` (a scene point), and its double copy for Embree; nullopt when the
+  // target snaps onto the eye or beyond the grid's eye range.
+  std::optional<std::pair<ExactRay, Ray>> ray_to(const Vec3& target) const {
+    const auto q = snap_eye(t_.grid, target);
+    if (!q || *q == eye_) return std::nullopt;
+    const ExactRay r{eye_, {q->x - eye_.x, q->y - eye_.y, q->z - eye_.z}};
+    const Vec3 from = t_.grid.point(eye_);
+    return std::pair(r, Ray{from, t_.grid.point(*q) - from});
+  }
+
+  void check(const ExactRay& r, std::span<const Hit> proposed, Tally& tally) {
+    hits_.clear();
+    for (const Hit& h : proposed) {
+      if (auto e = exact_hit(t_.fragments[h.fragment], h.fragment, r)) hits_.push_back(std::move(*e));
+      else ++tally.refused;
+    }
+    std::sort(hits_.begin(), hits_.end(), [](const ExactHit& a, const ExactHit& b) {
+      const int c = compare(a, b);
+      return c != 0 ? c < 0 : a.fragment < b.fragment;
+    });
+    tally.hits += hits_.size();
+    for (std::size_t i = 0; i < hits_.size(); ++i)
+      for (std::size_t j = i + 1; j < hits_.size(); ++j) {
+        ++tally.hit_pairs;
+        const ExactHit &nearer = hits_[i], &farther = hits_[j];
+        if (compare(nearer, farther) == 0) {
+          ++(same_plane(nearer.fragment, farther.fragment) ? tally.coplanar : tally.touching);
+          continue;
+        }
+        const std::uint64_t key = unordered_key(nearer.fragment, farther.fragment);
+        tally.checked.push_back(key);
+        if (pos_[nearer.fragment] < pos_[farther.fragment]) tally.violating.push_back(key);
+      }
+  }
+
+ private:
+  bool same_plane(std::uint32_t a, std::uint32_t b) const {
+    return PlanePool::coplanar(t_.tree.fragment_plane[a], t_.tree.fragment_plane[b]);
+  }
+
+  const ExactTree& t_;
+  GridPoint eye_;
+  std::vector<std::uint32_t> pos_;
+  std::vector<ExactHit> hits_;
+};
+
+void sort_unique(std::vector<std::uint64_t>& keys) {
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+}
+
+// One view: its rays in batches over the threads; counts are sums and set sizes, the same on any
+// thread count.
+void check_view(const ExactTree& t, const EmbreeScene& scene, const std::vector<Polygon>& fragments,
+                const GridPoint& eye, const ValidationSettings& settings, ExactValidationReport& out) {
+  const std::vector<std::uint32_t> order = exact_visibility_order(t, eye, Order::BackToFront);
+  const Vec3 eye_point = t.grid.point(eye);
+  const double reach = std::max(t.tree.bounds.diagonal(), 1e-300);
+  std::vector<ExactRay> exact;
+  std::vector<Ray> rays;
+  ViewCheck probe(t, eye, order);
+  for (const Ray& r : validation_rays(fragments, t.tree.bounds, eye_point, settings))
+    if (auto pair = probe.ray_to(eye_point + r.dir * (reach / std::max(length(r.dir), 1e-300)))) {
+      exact.push_back(pair->first);
+      rays.push_back(pair->second);
+    }
+  Tally all;
+  const auto batches = static_cast<std::int64_t>((rays.size() + kRaysPerBatch - 1) / kRaysPerBatch);
+#pragma omp parallel
+  {
+    Tally mine;
+    ViewCheck view(t, eye, order);
+    HitBatch batch;
+#pragma omp for schedule(dynamic, 1) nowait
+    for (std::int64_t b = 0; b < batches; ++b) {
+      const std::size_t first = static_cast<std::size_t>(b) * kRaysPerBatch;
+      const std::size_t count = std::min(kRaysPerBatch, rays.size() - first);
+      scene.all_hits(std::span<const Ray>(rays).subspan(first, count), batch);
+      for (std::size_t i = 0; i < count; ++i) view.check(exact[first + i], batch.of(i), mine);
+    }
+    sort_unique(mine.checked);
+    sort_unique(mine.violating);
+#pragma omp critical(bsp_exact_order_merge)
+    {
+      all.checked.insert(all.checked.end(), mine.checked.begin(), mine.checked.end());
+      all.violating.insert(all.violating.end(), mine.violating.begin(), mine.violating.end());
+      all.hits += mine.hits;
+      all.hit_pairs += mine.hit_pairs;
+      all.coplanar += mine.coplanar;
+      all.touching += mine.touching;
+      all.refused += mine.refused;
+    }
+  }
+  sort_unique(all.checked);
+  sort_unique(all.violating);
+  ValidationReport& r = out.report;
+  const int view = r.views++;
+  r.rays += rays.size();
+  r.hits += all.hits;
+  r.hit_pairs += all.hit_pairs;
+  r.pairs_checked += all.checked.size();
+  r.violations += all.violating.size();
+  r.ties_coplanar += all.coplanar;
+  r.ties_edge += all.touching;
+  out.refused += all.refused;
+  for (std::uint64_t k : all.violating) {
+    if (r.first_problems.size() >= OrderCheck::kMaxReported) break;
+    r.first_problems.push_back("view " + std::to_string(view) + ": fragments " + std::to_string(k >> 32) + " and " +
+                               std::to_string(k & 0xffffffffu) + " are drawn in the wrong order");
+  }
+}
+
+}  // namespace
+
+ExactValidationReport validate_exact_tree(const ExactTree& t, const ValidationSettings& settings) {
+  const auto start = std::chrono::steady_clock::now();
+  ExactValidationReport out;
+  out.report.fragments = t.fragments.size();
+  const std::vector<Polygon> fragments = t.tree.fragments.to_polygons();
+  const EmbreeScene scene(fragments, t.tree.tol.plane_eps);
+  for (const Vec3& e : validation_eyes(t.tree.bounds, settings.views)) {
+    const auto eye = snap_eye(t.grid, e);
+    if (!eye) {
+      ++out.eyes_beyond;
+      continue;
+    }
+    check_view(t, scene, fragments, *eye, settings, out);
+  }
+  out.report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.report.rays_per_second = out.report.seconds > 0 ? static_cast<double>(out.report.rays) / out.report.seconds : 0;
+  return out;
+}
+
+nlohmann::json to_json(const ExactValidationReport& r) {
+  nlohmann::json out = to_json(r.report);
+  out["refused_hits"] = r.refused;
+  out["eyes_beyond"] = r.eyes_beyond;
+  return out;
+}
+
+}  // namespace bsp
