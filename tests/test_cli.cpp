@@ -150,6 +150,34 @@ TEST_F(Cli, BadArgumentsPrintTheUsageLine) {
   expect_usage_error("order " + scene + " --heuristic first --eye 1,2,nan" + out, "--eye");
   expect_usage_error("order " + scene + " --heuristic first --eye 1,2,3", "missing option --out");
   expect_usage_error("order " + scene + " --heuristic nope --eye 1,2,3" + out, "unknown heuristic");
+  expect_usage_error("build " + scene + " --heuristic first --kernel double", "--kernel must be float or exact");
+  expect_usage_error("validate " + scene + " --heuristic first --shape leafy --kernel exact", "--kernel exact builds");
+  expect_usage_error("build " + scene + " --incremental --kernel exact", "--kernel exact builds");
+}
+
+// The exact kernel on the commands that take it: its key joins the JSON (only when not float), with
+// what snapping and the predicates did, and its orders and validation come out whole.
+TEST_F(Cli, ExactKernelRunsBuildOrderAndValidate) {
+  const std::string scene = "--scene near-degenerate --n 200 --heuristic crystal";
+  const CliResult b = run("build " + scene + " --kernel exact --views 1 --rays 50 --json");
+  ASSERT_EQ(b.code, 0) << b.err;
+  const auto built = nlohmann::json::parse(b.out);
+  EXPECT_EQ(built["kernel"], "exact");
+  EXPECT_EQ(built["dropped_slivers"], 0);
+  EXPECT_GT(built["exact"]["predicates"]["filtered"].get<std::uint64_t>(), 0u);
+  EXPECT_FALSE(nlohmann::json::parse(run("build " + scene + " --views 1 --rays 50 --json").out).contains("kernel"));
+  const CliResult v = run("validate " + scene + " --kernel exact --views 2 --json");
+  ASSERT_EQ(v.code, 0) << v.err;
+  const auto validated = nlohmann::json::parse(v.out);
+  EXPECT_EQ(validated["violations"], 0);
+  EXPECT_EQ(validated["ties"], 0);
+  const std::string prefix = (dir_ / "out" / "exact").string();
+  const CliResult o = run("order " + scene + " --kernel exact --eye 1,2,3 --out " + prefix);
+  ASSERT_EQ(o.code, 0) << o.err;
+  std::ifstream in(prefix + ".order.json");
+  const auto order = nlohmann::json::parse(in);
+  EXPECT_EQ(order["back_to_front"].size(), order["fragments"].get<std::size_t>());
+  EXPECT_EQ(order["eye_snapped"].size(), 3u);
 }
 
 TEST_F(Cli, ValidatePrintsOneJsonObjectWithTheCounts) {

@@ -9,6 +9,8 @@
 #include "cli/run_args.h"
 #include "common/errors.h"
 #include "io/atomic_file.h"
+#include "metrics/kernel_stats.h"
+#include "tree/exact_traverse.h"
 #include "tree/traverse.h"
 
 namespace bsp::cli {
@@ -56,13 +58,27 @@ int run(Args& args) {
   if (!eye_option) throw UsageError("missing option --eye");
   const Vec3 eye = *eye_option;
   Scene scene = scene_from_args(args, seed);
-  const TreeArgs t = tree_args_from(args, seed);
+  TreeArgs t = tree_args_from(args, seed);
+  t.kernel = kernel_from(args, t);
   args.finish();
-  const Tree tree = build_from_args(scene, t);
   nlohmann::json order = describe_run(scene, t);
   order["eye"] = {eye.x, eye.y, eye.z};
+  Tree tree;
+  if (t.kernel == Kernel::Exact) {
+    // The eye snapped to the scene's grid, as every exact decision needs; the order is for that point.
+    ExactTree exact = build_exact_from_args(scene, t);
+    const auto grid_eye = snap_eye(exact.grid, eye);
+    if (!grid_eye) throw UsageError("--eye is too far from the scene for its grid (more than 2^52 grid steps)");
+    const Vec3 snapped = exact.grid.point(*grid_eye);
+    order["eye_snapped"] = {snapped.x, snapped.y, snapped.z};
+    order["back_to_front"] = exact_visibility_order(exact, *grid_eye, Order::BackToFront);
+    order["exact"] = to_json(exact.exact);
+    tree = std::move(exact.tree);
+  } else {
+    tree = build_from_args(scene, t);
+    order["back_to_front"] = visibility_order(tree, eye, Order::BackToFront);
+  }
   order["fragments"] = tree.fragments.size();
-  order["back_to_front"] = visibility_order(tree, eye, Order::BackToFront);
   const std::string obj_path = prefix + ".obj", order_path = prefix + ".order.json";
   write_both(obj_path, fragments_obj(tree), order_path, order.dump() + "\n");
   if (json) {
@@ -83,11 +99,12 @@ int run(Args& args) {
 
 Command order_command() {
   static const std::string usage =
-      std::string(kSceneUsage) + " " + std::string(kTreeUsage) + " --eye X,Y,Z --out PREFIX [--json]";
+      std::string(kSceneUsage) + " " + std::string(kTreeUsage) + " " + std::string(kKernelUsage) +
+      " --eye X,Y,Z --out PREFIX [--json]";
   return {"order", usage, "write a tree's fragments (PREFIX.obj) and back-to-front order from an eye (PREFIX.order.json)",
           run,
-          concat({kSceneOptions, kTreeOptions,
-                  {{"--eye X,Y,Z", "the eye the order is computed for"},
+          concat({kSceneOptions, kTreeOptions, {kKernelOption},
+                  {{"--eye X,Y,Z", "the eye the order is computed for (snapped to the scene's grid with --kernel exact)"},
                    {"--out PREFIX", "writes PREFIX.obj and PREFIX.order.json"}},
                   kJsonOption})};
 }
