@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "catalog.h"
+#include "experiments/kernel/kernel.h"
 #include "geometry/grid_plane_pool.h"
 #include "split/registry.h"
 #include "tree/build.h"
@@ -193,4 +194,22 @@ TEST(ExactValidation, CoplanarOverlapsAreTiesAndNothingElseIs) {
   const ExactValidationReport r = validate_exact_tree(t, settings);
   EXPECT_EQ(r.report.violations, 0u);
   EXPECT_GT(r.report.ties_coplanar, 0u);
+}
+
+// The kernel comparison on the scene made to defeat tolerances: the float kernel drops slivers,
+// leaves pairs as ties and classifies some polygons differently; the exact kernel drops nothing,
+// leaves no tie and draws no pair in the wrong order.
+TEST(KernelComparison, NearDegenerateSceneShowsWhatTheToleranceDecides) {
+  const Scene s = make_scene("near-degenerate", {{"n", "300"}});
+  auto a = make_splitter("crystal", {}, 1), b = make_splitter("crystal", {}, 1);
+  const experiments::KernelComparison c = experiments::compare_kernels(s.polygons, *a, *b, 2);
+  const auto& m = c.metrics;
+  EXPECT_GT(m["float_dropped"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(m["exact_dropped"].get<std::uint64_t>(), 0u);
+  EXPECT_GT(m["float_ties"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(m["exact_ties"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(m["exact_violations"].get<std::uint64_t>(), 0u);
+  EXPECT_GT(m["classify_differences"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(c.invariants["violations"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(c.validation["violations"].get<std::uint64_t>(), 0u);
 }

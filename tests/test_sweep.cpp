@@ -33,6 +33,7 @@
 #include "experiments/heuristic_choice.h"
 #include "experiments/merge/merge.h"
 #include "experiments/occlude/occlude.h"
+#include "experiments/kernel/kernel.h"
 #include "experiments/reference_build.h"
 #include "experiments/timing.h"
 #include "gate/bench_gate.h"
@@ -172,6 +173,7 @@ JobFacts facts(const Job& job) {
   if (const auto* d = dynamic_cast<const DrawJob*>(&job)) scene(d->spec());
   if (const auto* a = dynamic_cast<const AnimateJob*>(&job)) scene(a->scene());
   if (const auto* o = dynamic_cast<const OccludeJob*>(&job)) scene(o->scene());
+  if (const auto* k = dynamic_cast<const KernelJob*>(&job)) scene(k->scene());
   if (const auto* m = dynamic_cast<const MergeJob*>(&job)) {
     f.scene = m->spec().pair;
     f.heuristic = m->spec().heuristic.label;

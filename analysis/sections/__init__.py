@@ -1,8 +1,8 @@
 """The report's sections, one module each, in page order. Each exposes render(report, ctx) -> Section
 or None (sections/common.py); adding a section is a module and a line here.
 """
-from sections import (animate, changes, cost_model, doom, draw, glossary, merge, occlude, segments, theory,
-                      verdicts)
+from sections import (animate, changes, cost_model, doom, draw, glossary, kernel, merge, occlude, segments,
+                      theory, verdicts)
 
 SECTIONS = (
     changes.render,     # with --baseline: what changed, before the contents
@@ -16,4 +16,5 @@ SECTIONS = (
     occlude.render,     # occlusion culling
     segments.render,    # 2D segments against the Paterson–Yao bound
     doom.render,        # Doom maps beside the node builders
+    kernel.render,      # float against exact geometry
 )

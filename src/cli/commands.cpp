@@ -24,6 +24,7 @@ const std::vector<Command>& commands() {
       animate_command(),
       occlude_command(),
       doom_command(),
+      kernel_command(),
   };
   return all;
 }

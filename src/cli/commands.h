@@ -44,5 +44,6 @@ Command classify_command();
 Command animate_command();
 Command occlude_command();
 Command doom_command();
+Command kernel_command();
 
 }  // namespace bsp::cli

@@ -5,6 +5,7 @@
 #include "experiments/animate/animate.h"
 #include "experiments/doom/doom.h"
 #include "experiments/draw/draw.h"
+#include "experiments/kernel/kernel.h"
 #include "experiments/merge/merge.h"
 #include "experiments/occlude/occlude.h"
 
@@ -13,7 +14,7 @@ namespace bsp {
 std::span<const experiments::Kind* const> kinds() {
   static const experiments::Kind* const all[] = {
       &experiments::draw_kind(),    &experiments::merge_kind(), &experiments::animate_kind(),
-      &experiments::occlude_kind(), &experiments::doom_kind(),
+      &experiments::occlude_kind(), &experiments::doom_kind(),  &experiments::kernel_kind(),
   };
   return all;
 }

@@ -1,0 +1,213 @@
+#include "experiments/kernel/kernel.h"
+
+#include <nlohmann/json.hpp>
+
+#include "catalog.h"
+#include "common/cpu_time.h"
+#include "common/hash.h"
+#include "experiments/reference_build.h"
+#include "geometry/snap.h"
+#include "metrics/kernel_stats.h"
+#include "metrics/tree_metrics.h"
+#include "tree/build.h"
+#include "tree/exact_build.h"
+#include "validate/exact_invariants.h"
+#include "validate/exact_order_check.h"
+#include "validate/order_check.h"
+#include "validate/tree_invariants.h"
+
+namespace bsp::experiments {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr TimingField kTimings[] = {
+    {"exact_build_cpu_samples", TimingRole::GatedSamples,
+     "thread CPU seconds per exact build (snapping included), one per timed batch of at least 2 ms"},
+    {"exact_build_reference_samples", TimingRole::ReferenceSamples,
+     "thread CPU seconds per Embree BVH build of the same input, one batch before each timed batch: the gate divides each sample by it (experiments/reference_build.h)"},
+    {"exact_build_cpu_median", TimingRole::SamplesMedian, "the median of exact_build_cpu_samples"},
+    {"exact_build_cpu_runs", TimingRole::SampleCount, "exact builds timed: depends on the machine's speed"},
+    {"float_build_cpu_seconds", TimingRole::Cpu, "thread CPU seconds of the float kernel's build of the snapped input, once"},
+    {"exact_build_cpu_seconds", TimingRole::Cpu, "thread CPU seconds of the exact kernel's build (snapping included), once"},
+    {"job_seconds", TimingRole::Wall, "wall time of the whole job"},
+};
+constexpr std::string_view kGrowthMetrics[] = {"float_fragments", "exact_fragments"};
+
+// The input with every vertex moved to its grid point: what the float kernel builds from, so both
+// kernels start from the same points.
+std::vector<Polygon> on_grid(std::span<const Polygon> input, const Grid& grid) {
+  std::vector<Polygon> out(input.begin(), input.end());
+  for (Polygon& p : out)
+    for (Vertex& v : p.verts) v.p = grid.point(*grid.snap(v.p));
+  return out;
+}
+
+// The float kernel's classification of each snapped input polygon kept whole against up to
+// kClassifyPlanes node planes of the exact tree, beside the exact one: how often they differ and
+// how. Polygons snapping fanned are left out (the kernels split them differently).
+json classification_differences(const ExactTree& exact, std::span<const Polygon> snapped, std::span<const Polygon> input) {
+  const SnappedScene scene = snap_polygons(input);
+  std::vector<std::uint32_t> planes;
+  const std::size_t every = std::max<std::size_t>(1, exact.tree.nodes.size() / kClassifyPlanes);
+  for (std::size_t i = 0; i < exact.tree.nodes.size() && planes.size() < kClassifyPlanes; i += every)
+    if (exact.tree.nodes[i].plane != kNull) planes.push_back(exact.tree.nodes[i].plane);
+  std::vector<std::uint32_t> pieces(input.size(), 0);
+  for (const PlanePolygon& p : scene.polygons) ++pieces[p.source];
+  std::uint64_t tests = 0, differ = 0, flattened = 0, unsplit = 0, other = 0;
+  PredicateCounters counters;
+  const double eps = exact.tree.tol.plane_eps;
+  for (const PlanePolygon& p : scene.polygons) {
+    if (pieces[p.source] != 1 || snapped[p.source].verts.size() != p.size()) continue;
+    for (std::uint32_t plane : planes) {
+      ++tests;
+      const Side truth = split(p, exact.plane(plane), counters).side;
+      const Side approx = classify(snapped[p.source], exact.tree.planes[plane], eps);
+      if (truth == approx) continue;
+      ++differ;
+      if (approx == Side::Coplanar) ++flattened;
+      else if (truth == Side::Spanning) ++unsplit;
+      else ++other;
+    }
+  }
+  return {{"classify_tests", tests},
+          {"classify_differences", differ},
+          {"classify_flattened", flattened},
+          {"classify_unsplit", unsplit},
+          {"classify_other", other}};
+}
+
+json shape(const char* prefix, const Tree& tree) {
+  const TreeMetrics m = measure_tree(tree);
+  const std::string p = prefix;
+  return {{p + "_fragments", m.fragments},         {p + "_splits", m.splits},
+          {p + "_nodes", m.nodes},                 {p + "_max_depth", m.max_depth},
+          {p + "_mean_depth", m.mean_depth},       {p + "_dropped", m.dropped_input + m.dropped_slivers},
+          {p + "_dropped_area", tree.stats.dropped_area}};
+}
+
+json order_counts(const char* prefix, const ValidationReport& r) {
+  const std::string p = prefix;
+  return {{p + "_violations", r.violations}, {p + "_ties", r.ties()}, {p + "_pairs_checked", r.pairs_checked}};
+}
+
+}  // namespace
+
+KernelComparison compare_kernels(std::span<const Polygon> input, Splitter& float_splitter, Splitter& exact_splitter,
+                                 std::uint32_t views) {
+  const double exact_start = thread_cpu_seconds();
+  const ExactTree exact = build_exact_tree(input, exact_splitter);
+  const double exact_seconds = thread_cpu_seconds() - exact_start;
+  const std::vector<Polygon> snapped = on_grid(input, exact.grid);
+  const double float_start = thread_cpu_seconds();
+  const Tree tree = build_tree(snapped, float_splitter);
+  const double float_seconds = thread_cpu_seconds() - float_start;
+
+  ValidationSettings settings;
+  settings.views = static_cast<int>(views);
+  const ValidationReport float_order = validate_tree(tree, settings);
+  const ExactValidationReport exact_order = validate_exact_tree(exact, settings);
+
+  KernelComparison out;
+  json& m = out.metrics;
+  m = shape("float", tree);
+  m.update(shape("exact", exact.tree));
+  m.update(order_counts("float", float_order));
+  m.update(order_counts("exact", exact_order.report));
+  m["exact_refused_hits"] = exact_order.refused;
+  m["plane_eps"] = tree.tol.plane_eps;
+  m.update(classification_differences(exact, snapped, input));
+  const json stats = to_json(exact.exact);
+  m["snap_max_displacement"] = stats["snap"]["max_displacement"];
+  m["snap_fanned"] = stats["snap"]["fanned"];
+  m["snap_degenerate"] = stats["snap"]["degenerate"];
+  for (const char* k : {"filtered", "exact", "on_grid", "boxes", "filter_rate"}) m[std::string("predicates_") + k] = stats["predicates"][k];
+  out.invariants = {{"violations", check_tree_invariants(tree, snapped).violations + check_exact_invariants(exact).violations}};
+  // The exact kernel's order is ours to answer for; the float kernel's ties and violations are the
+  // tolerance's, reported as metrics.
+  out.validation = {{"violations", exact_order.report.violations}, {"rays", exact_order.report.rays}};
+  out.timings = {{"float_build_cpu_seconds", float_seconds}, {"exact_build_cpu_seconds", exact_seconds}};
+  return out;
+}
+
+namespace {
+
+std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, const std::string& path) {
+  r.expect(j, j.is_object(), path, "an object");
+  r.check_keys(j, path, {"scenes", "sizes", "heuristics", "seeds", "views"});
+  auto b = std::make_unique<KernelBlock>();
+  std::vector<const GeneratorInfo*> sized;
+  b->scenes = r.generator_names(r.required(j, path, "scenes"), child(path, "scenes"), "kernel comparison", sized);
+  b->sizes = r.generator_sizes(j, path, sized);
+  if (const json* h = r.optional(j, "heuristics")) b->heuristics = r.heuristics(*h, child(path, "heuristics"));
+  b->seeds = r.seeds(j, path);
+  if (const json* v = r.optional(j, "views")) b->views = static_cast<std::uint32_t>(r.integer(*v, child(path, "views"), 1, kMaxViews));
+  return b;
+}
+
+}  // namespace
+
+Jobs KernelBlock::expand() const {
+  Jobs out;
+  for (const auto& name : scenes) {
+    const GeneratorInfo& g = find_generator(name);
+    for (auto n : sizes_in_range(g, sizes))
+      for (const auto& h : choices_or_all(heuristics))
+        for (auto seed : seeds)
+          out.push_back(std::make_shared<KernelJob>(SceneRun::generated(g, {}, h, Shape::Strict, seed, n, views)));
+  }
+  return out;
+}
+
+KernelJob::KernelJob(SceneRun scene) : scene_(std::move(scene)) {
+  Hasher h;
+  h.add_string("kernel");
+  h.add_string(scene_.hash(scene_.key_scene_text()));
+  set_identity(h.hex(), scene_.n);
+}
+
+json KernelJob::identity() const {
+  json id = scene_.identity("kernel");
+  std::string command = "bspbench kernel --scene " + scene_.scene;
+  if (scene_.n > 0) command += " --n " + std::to_string(scene_.n);
+  id["command"] = command + " --seed " + std::to_string(scene_.seed) + scene_.heuristic->arguments() + " --views " +
+                  std::to_string(scene_.views);
+  return id;
+}
+
+json KernelJob::run(const RunContext& context) const {
+  const double start = wall_seconds();
+  const Scene scene = scene_.make_scene();
+  KernelComparison c = compare_kernels(scene.polygons, *scene_.heuristic->splitter(scene_.seed),
+                                       *scene_.heuristic->splitter(scene_.seed), scene_.views);
+  // The exact build in timed batches beside Embree's, what the gate watches.
+  const ReferenceBuild reference(scene.polygons);
+  const TimedBatches batches = time_batches(
+      [&] { build_exact_tree(scene.polygons, *scene_.heuristic->splitter(scene_.seed)); },
+      context.slowdown(scene_.heuristic->label), [&] { reference.run(); });
+  c.timings["exact_build_cpu_samples"] = batches.samples;
+  c.timings["exact_build_reference_samples"] = batches.reference;
+  c.timings["exact_build_cpu_median"] = batches.median();
+  c.timings["exact_build_cpu_runs"] = batches.runs;
+  json id = identity();
+  id["n_polygons"] = scene.polygons.size();
+  id["scene_hash"] = scene_json(scene)["hash"];
+  return make_record(*this, std::move(id), std::move(c.metrics), std::move(c.invariants), std::move(c.validation),
+                     nullptr, std::move(c.timings), start);
+}
+
+const Kind& kernel_kind() {
+  static const Kind kind{
+      .name = "kernel",
+      .suite_key = "kernels",
+      .parse = parse_block,
+      .timings = kTimings,
+      .growth_metrics = kGrowthMetrics,
+      .timing_group_word = "kernel",
+      .schema_section = "KERNEL RUN",
+  };
+  return kind;
+}
+
+}  // namespace bsp::experiments
