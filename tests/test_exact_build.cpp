@@ -202,7 +202,9 @@ TEST(ExactValidation, CoplanarOverlapsAreTiesAndNothingElseIs) {
 TEST(KernelComparison, NearDegenerateSceneShowsWhatTheToleranceDecides) {
   const Scene s = make_scene("near-degenerate", {{"n", "300"}});
   auto a = make_splitter("crystal", {}, 1), b = make_splitter("crystal", {}, 1);
-  const experiments::KernelComparison c = experiments::compare_kernels(s.polygons, *a, *b, 2);
+  experiments::KernelSettings settings;
+  settings.views = 2;
+  const experiments::KernelComparison c = experiments::compare_kernels(s.polygons, *a, *b, settings);
   const auto& m = c.metrics;
   EXPECT_GT(m["float_dropped"].get<std::uint64_t>(), 0u);
   EXPECT_EQ(m["exact_dropped"].get<std::uint64_t>(), 0u);

@@ -63,6 +63,80 @@ def scene_table(scene, aggs):
                  + [Column(k, title=doc) for _, k, doc in KERNEL_COLUMNS], rows)
 
 
+DEFAULT_EPS = 1e-9
+
+# What "going wrong" means on a failure curve, each with the metric that shows it.
+ONSETS = (("float_violations", "pairs drawn in the wrong order"),
+          ("float_dropped", "fragments dropped as slivers"),
+          ("classify_differences", "classifications unlike the exact one"))
+
+
+def is_default(agg):
+    return agg.get("plane_eps_relative", DEFAULT_EPS) == DEFAULT_EPS and agg.get("perturbation", 0) == 0
+
+
+def curve(aggs, field, metric):
+    """(x, mean of metric at the smallest size) per aggregate, sorted by x."""
+    pts = []
+    for a in aggs:
+        entry = a["by_n"][0]
+        y = value(entry, "metrics", metric)
+        if y is not None:
+            pts.append((a.get(field, 0), y))
+    return sorted(pts)
+
+
+def plot_curves(scene, aggs, field, label, path):
+    metrics = [m for m, _ in ONSETS] + ["float_ties"]
+    fig, axes = plt.subplots(1, len(metrics), figsize=(4 * len(metrics), 3.6))
+    for heuristic in sorted({a["heuristic"] for a in aggs}):
+        mine = [a for a in aggs if a["heuristic"] == heuristic]
+        for ax, metric in zip(axes, metrics):
+            pts = [(x, y) for x, y in curve(mine, field, metric) if x > 0]
+            if pts:
+                ax.plot(*zip(*pts), marker="o", label=heuristic)
+    for ax, metric in zip(axes, metrics):
+        ax.set_xscale("log")
+        ax.set_yscale("symlog", linthresh=1)
+        ax.set_xlabel(label)
+        ax.set_title(f"{scene}: {metric}", fontsize=9)
+        ax.grid(True, which="both", alpha=0.3)
+    handles, labels = axes[0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 9), fontsize=8)
+    fig.tight_layout(rect=(0, 0.12, 1, 1))
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def onset_rows(scene, aggs, field):
+    """Per heuristic, the smallest value of `field` at which each kind of failure first shows."""
+    rows = []
+    for heuristic in sorted({a["heuristic"] for a in aggs}):
+        mine = [a for a in aggs if a["heuristic"] == heuristic]
+        cells = []
+        for metric, _ in ONSETS:
+            first = next((x for x, y in curve(mine, field, metric) if y > 0), None)
+            cells.append(plain(first) if first is not None else "none")
+        rows.append([scene, heuristic] + cells)
+    return rows
+
+
+def sweep_part(scene, aggs, field, label, ctx, tables, onsets):
+    swept = [a for a in aggs if field in a and len({b.get(field) for b in aggs}) > 1]
+    if not swept:
+        return ""
+    png = f"kernel-{slug(scene)}-{field}.png"
+    plot_curves(scene, swept, field, label, os.path.join(ctx.out_dir, png))
+    onsets.extend(onset_rows(scene, swept, field))
+    return f"<img src='{png}' alt='{html.escape(scene)} against {html.escape(label)}'>"
+
+
+def onset_table(name, title, field_title, rows):
+    return Table(name, title, [("scene", ""), ("heuristic", "")]
+                 + [(f"first {field_title} with {what}", "") for _, what in ONSETS], rows)
+
+
 def render(report, ctx):
     scenes = {}
     for agg in aggregates_of(report, "kernel"):
@@ -75,14 +149,30 @@ def render(report, ctx):
              "the exact kernel, which decides every side as the sign of a determinant [Sugihara1989] "
              "[BernsteinFussell2009] and drops nothing. Both trees' back-to-front orders are checked by Embree ray "
              "casts; the float check leaves pairs closer than its tolerance as ties, the exact check decides every "
-             "pair. A column of differences is what the tolerance decided differently from the geometry.</p>" + ctx.how]
-    tables = []
+             "pair. A column of differences is what the tolerance decided differently from the geometry. Where a "
+             "suite sweeps plane_eps (of the scene's diagonal) or perturbs the input, the failure curves and the "
+             "onset tables say at which value each scene starts to go wrong, and how.</p>" + ctx.how]
+    tables, eps_onsets, noise_onsets = [], [], []
     for scene, aggs in sorted(scenes.items()):
         aggs = sorted(aggs, key=lambda a: a["heuristic"])
-        png = f"kernel-{slug(scene)}.png"
-        plot_kernel(scene, aggs, os.path.join(ctx.out_dir, png))
-        t = scene_table(scene, aggs)
-        tables.append(t)
-        parts.append(f"<h3 id='kernel-{slug(scene)}'>{html.escape(scene)}</h3>"
-                     f"<img src='{png}' alt='float against exact for {html.escape(scene)}'>{t.html(scroll=True)}")
+        parts.append(f"<h3 id='kernel-{slug(scene)}'>{html.escape(scene)}</h3>")
+        default = [a for a in aggs if is_default(a)]
+        if default:
+            png = f"kernel-{slug(scene)}.png"
+            plot_kernel(scene, default, os.path.join(ctx.out_dir, png))
+            t = scene_table(scene, default)
+            tables.append(t)
+            parts.append(f"<img src='{png}' alt='float against exact for {html.escape(scene)}'>{t.html(scroll=True)}")
+        parts.append(sweep_part(scene, [a for a in aggs if a.get("perturbation", 0) == 0], "plane_eps_relative",
+                                "plane_eps / diagonal", ctx, tables, eps_onsets))
+        parts.append(sweep_part(scene, [a for a in aggs if a.get("plane_eps_relative", DEFAULT_EPS) == DEFAULT_EPS],
+                                "perturbation", "perturbation / diagonal", ctx, tables, noise_onsets))
+    for name, title, field_title, rows in (("kernel-eps-onset", "where each scene starts to go wrong as plane_eps grows",
+                                            "plane_eps", eps_onsets),
+                                           ("kernel-noise-onset", "where each scene starts to go wrong as the input is perturbed (plane_eps 1e-9)",
+                                            "perturbation", noise_onsets)):
+        if rows:
+            t = onset_table(name, title, field_title, rows)
+            tables.append(t)
+            parts.append(f"<h3 id='{name}'>{html.escape(title[0].upper() + title[1:])}</h3>{t.html(scroll=True)}")
     return Section([("kernel", "float against exact")], "".join(parts), tables)

@@ -30,7 +30,7 @@ Int128 magnitude(Int128 v) { return v < 0 ? -v : v; }
 
 using UInt128 = unsigned __int128;
 
-// Binary GCD [Knuth, TAOCP vol. 2, 4.5.2, algorithm B]; gcd(0, v) = v. Each step removes at least
+// Binary GCD [Knuth1997, algorithm B]; gcd(0, v) = v. Each step removes at least
 // a bit, and once both numbers fit 64 bits the steps run in 64-bit registers.
 std::uint64_t gcd64(std::uint64_t u, std::uint64_t v) {
   if (u == 0) return v;

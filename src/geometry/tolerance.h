@@ -27,8 +27,10 @@ inline constexpr double kParallelCosineSlack = 1e-9;
 struct Tolerance {
   double plane_eps = kPlaneEpsRelative;
 
-  static Tolerance for_extent(double scene_diagonal) {
-    return {kPlaneEpsRelative * std::max(scene_diagonal, 1e-300)};
+  // `relative` is kPlaneEpsRelative everywhere but in the kernel runs that sweep it to measure
+  // what the tolerance does (experiments/kernel/kernel.h).
+  static Tolerance for_extent(double scene_diagonal, double relative = kPlaneEpsRelative) {
+    return {relative * std::max(scene_diagonal, 1e-300)};
   }
 };
 

@@ -487,7 +487,7 @@ Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildO
   const auto start = Clock::now();
   TreeDraft draft;
   draft.shape = options.shape;
-  std::vector<std::uint32_t> ids = load_input(input, draft);
+  std::vector<std::uint32_t> ids = load_input(input, draft, options.plane_eps_relative);
   if (options.incremental) {
     build_incremental(draft, std::move(ids), splitter, options);
     Tree tree = freeze(std::move(draft));

@@ -96,7 +96,7 @@ void pool_chunk(Chunk& c, TreeDraft& tree, BuildStats& stats, std::vector<std::u
 
 }  // namespace
 
-std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree) {
+std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree, double plane_eps_relative) {
   bool tex_coords = false;
   std::size_t vertices = 0;
   for (const auto& poly : input) {
@@ -106,7 +106,7 @@ std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft&
       tex_coords |= v.u != 0 || v.v != 0;
     }
   }
-  tree.tol = Tolerance::for_extent(tree.bounds.diagonal());
+  tree.tol = Tolerance::for_extent(tree.bounds.diagonal(), plane_eps_relative);
   tree.stats.n_input = input.size();
   tree.store = FragmentStore(tex_coords);
   tree.store.reserve(FragmentStore::kGrowthRoom * input.size(), FragmentStore::kGrowthRoom * vertices);

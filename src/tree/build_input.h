@@ -10,10 +10,12 @@
 
 namespace bsp {
 
-// Sets tree.bounds, tree.tol, tree.store (texture coordinates kept when the input has non-zero
-// ones) and the input counters of tree.stats; returns the ids of the usable input fragments in
-// input order (slivers dropped and non-planar polygons fan-triangulated).
-std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree);
+// Sets tree.bounds, tree.tol (plane_eps_relative of the input's diagonal), tree.store (texture
+// coordinates kept when the input has non-zero ones) and the input counters of tree.stats; returns
+// the ids of the usable input fragments in input order (slivers dropped and non-planar polygons
+// fan-triangulated).
+std::vector<std::uint32_t> load_input(std::span<const Polygon> input, TreeDraft& tree,
+                                      double plane_eps_relative = kPlaneEpsRelative);
 
 // The same for polygons added to a draft whose tolerance and store are already set: polygon i gets
 // source first_source + i, and the input counters add to `stats` (the caller's, which need not be

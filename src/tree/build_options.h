@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geometry/plane.h"
+#include "geometry/tolerance.h"
 #include "tree/tree.h"
 
 namespace bsp {
@@ -36,6 +37,9 @@ struct BuildOptions {
   // some planes (Doom's partition lines through integer points) gets the plane it will store, and
   // the tree is built with exactly that plane.
   std::function<Plane(const Plane&)> snap_free_plane{};
+  // The float kernel's tolerance relative to the input's diagonal (geometry/tolerance.h). Only the
+  // kernel runs that measure what the tolerance does set another (experiments/kernel/kernel.h).
+  double plane_eps_relative = kPlaneEpsRelative;
 };
 
 }  // namespace bsp

@@ -1,10 +1,13 @@
 #include "experiments/kernel/kernel.h"
 
+#include <cstdio>
+
 #include <nlohmann/json.hpp>
 
 #include "catalog.h"
 #include "common/cpu_time.h"
 #include "common/hash.h"
+#include "common/rng.h"
 #include "experiments/reference_build.h"
 #include "geometry/snap.h"
 #include "metrics/kernel_stats.h"
@@ -34,6 +37,7 @@ constexpr TimingField kTimings[] = {
     {"job_seconds", TimingRole::Wall, "wall time of the whole job"},
 };
 constexpr std::string_view kGrowthMetrics[] = {"float_fragments", "exact_fragments"};
+constexpr std::string_view kGroupBy[] = {"plane_eps_relative", "perturbation"};
 
 // The input with every vertex moved to its grid point: what the float kernel builds from, so both
 // kernels start from the same points.
@@ -94,18 +98,39 @@ json order_counts(const char* prefix, const ValidationReport& r) {
 
 }  // namespace
 
-KernelComparison compare_kernels(std::span<const Polygon> input, Splitter& float_splitter, Splitter& exact_splitter,
-                                 std::uint32_t views) {
+std::vector<Polygon> perturbed(std::span<const Polygon> input, double relative, std::uint64_t seed) {
+  std::vector<Polygon> out(input.begin(), input.end());
+  if (relative == 0) return out;
+  Box box;
+  for (const Polygon& p : input)
+    for (const Vertex& v : p.verts) box.add(v.p);
+  const double reach = relative * box.diagonal();
+  for (Polygon& p : out)
+    for (Vertex& v : p.verts) {
+      Hasher h;
+      h.add_u64(seed);
+      for (double x : {v.p.x, v.p.y, v.p.z}) h.add_double(x);
+      Rng rng(h.value());
+      v.p += Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)} * reach;
+    }
+  return out;
+}
+
+KernelComparison compare_kernels(std::span<const Polygon> original, Splitter& float_splitter, Splitter& exact_splitter,
+                                 const KernelSettings& ks) {
+  const std::vector<Polygon> input = perturbed(original, ks.perturbation, ks.seed);
   const double exact_start = thread_cpu_seconds();
   const ExactTree exact = build_exact_tree(input, exact_splitter);
   const double exact_seconds = thread_cpu_seconds() - exact_start;
   const std::vector<Polygon> snapped = on_grid(input, exact.grid);
+  BuildOptions options;
+  options.plane_eps_relative = ks.plane_eps_relative;
   const double float_start = thread_cpu_seconds();
-  const Tree tree = build_tree(snapped, float_splitter);
+  const Tree tree = build_tree(snapped, float_splitter, options);
   const double float_seconds = thread_cpu_seconds() - float_start;
 
   ValidationSettings settings;
-  settings.views = static_cast<int>(views);
+  settings.views = static_cast<int>(ks.views);
   const ValidationReport float_order = validate_tree(tree, settings);
   const ExactValidationReport exact_order = validate_exact_tree(exact, settings);
 
@@ -135,7 +160,7 @@ namespace {
 
 std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, const std::string& path) {
   r.expect(j, j.is_object(), path, "an object");
-  r.check_keys(j, path, {"scenes", "sizes", "heuristics", "seeds", "views"});
+  r.check_keys(j, path, {"scenes", "sizes", "heuristics", "seeds", "views", "plane_eps", "perturbations"});
   auto b = std::make_unique<KernelBlock>();
   std::vector<const GeneratorInfo*> sized;
   b->scenes = r.generator_names(r.required(j, path, "scenes"), child(path, "scenes"), "kernel comparison", sized);
@@ -143,6 +168,15 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
   if (const json* h = r.optional(j, "heuristics")) b->heuristics = r.heuristics(*h, child(path, "heuristics"));
   b->seeds = r.seeds(j, path);
   if (const json* v = r.optional(j, "views")) b->views = static_cast<std::uint32_t>(r.integer(*v, child(path, "views"), 1, kMaxViews));
+  const auto reals = [&](const char* key, double min, std::vector<double>& out) {
+    const json* list = r.optional(j, key);
+    if (!list) return;
+    out.clear();
+    r.each(*list, child(path, key), "at least one value",
+           [&](const json& x, const std::string& at) { out.push_back(r.real(x, at, min, kMaxRelative)); });
+  };
+  reals("plane_eps", kMinRelative, b->plane_eps);
+  reals("perturbations", 0.0, b->perturbations);
   return b;
 }
 
@@ -155,36 +189,59 @@ Jobs KernelBlock::expand() const {
     for (auto n : sizes_in_range(g, sizes))
       for (const auto& h : choices_or_all(heuristics))
         for (auto seed : seeds)
-          out.push_back(std::make_shared<KernelJob>(SceneRun::generated(g, {}, h, Shape::Strict, seed, n, views)));
+          for (double eps : plane_eps)
+            for (double noise : perturbations)
+              out.push_back(std::make_shared<KernelJob>(SceneRun::generated(g, {}, h, Shape::Strict, seed, n, views), eps,
+                                                        noise));
   }
   return out;
 }
 
-KernelJob::KernelJob(SceneRun scene) : scene_(std::move(scene)) {
+KernelJob::KernelJob(SceneRun scene, double plane_eps_relative, double perturbation)
+    : scene_(std::move(scene)), plane_eps_relative_(plane_eps_relative), perturbation_(perturbation) {
   Hasher h;
   h.add_string("kernel");
   h.add_string(scene_.hash(scene_.key_scene_text()));
+  h.add_double(plane_eps_relative_);
+  h.add_double(perturbation_);
   set_identity(h.hex(), scene_.n);
 }
+
+namespace {
+
+// A double as the command line reads it back exactly.
+std::string exact_text(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", x);
+  return text;
+}
+
+}  // namespace
 
 json KernelJob::identity() const {
   json id = scene_.identity("kernel");
   std::string command = "bspbench kernel --scene " + scene_.scene;
   if (scene_.n > 0) command += " --n " + std::to_string(scene_.n);
   id["command"] = command + " --seed " + std::to_string(scene_.seed) + scene_.heuristic->arguments() + " --views " +
-                  std::to_string(scene_.views);
+                  std::to_string(scene_.views) + " --plane-eps " + exact_text(plane_eps_relative_) + " --perturb " +
+                  exact_text(perturbation_);
+  id["plane_eps_relative"] = plane_eps_relative_;
+  id["perturbation"] = perturbation_;
   return id;
 }
 
 json KernelJob::run(const RunContext& context) const {
   const double start = wall_seconds();
   const Scene scene = scene_.make_scene();
+  const KernelSettings settings{scene_.views, plane_eps_relative_, perturbation_, scene_.seed};
   KernelComparison c = compare_kernels(scene.polygons, *scene_.heuristic->splitter(scene_.seed),
-                                       *scene_.heuristic->splitter(scene_.seed), scene_.views);
+                                       *scene_.heuristic->splitter(scene_.seed), settings);
   // The exact build in timed batches beside Embree's, what the gate watches.
   const ReferenceBuild reference(scene.polygons);
   const TimedBatches batches = time_batches(
-      [&] { build_exact_tree(scene.polygons, *scene_.heuristic->splitter(scene_.seed)); },
+      [&, input = perturbed(scene.polygons, perturbation_, scene_.seed)] {
+        build_exact_tree(input, *scene_.heuristic->splitter(scene_.seed));
+      },
       context.slowdown(scene_.heuristic->label), [&] { reference.run(); });
   c.timings["exact_build_cpu_samples"] = batches.samples;
   c.timings["exact_build_reference_samples"] = batches.reference;
@@ -203,6 +260,7 @@ const Kind& kernel_kind() {
       .suite_key = "kernels",
       .parse = parse_block,
       .timings = kTimings,
+      .group_by = kGroupBy,
       .growth_metrics = kGrowthMetrics,
       .timing_group_word = "kernel",
       .schema_section = "KERNEL RUN",
