@@ -78,7 +78,8 @@ void load_one(const Polygon& poly, std::uint32_t source, double eps, Chunk& out)
     keep_one(Polygon{poly.verts, source}, eps, out);
     return;
   }
-  // Not planar within the tolerance: a fan of triangles keeps the area and the attributes.
+  // Not planar within the tolerance: a fan of triangles keeps the attributes and the area projected
+  // onto the polygon's Newell normal (input_area), which is the sum of the triangles' projections.
   out.triangulated_extra += poly.verts.size() - 3;
   for (std::size_t i = 1; i + 1 < poly.verts.size(); ++i)
     keep_one(Polygon{{poly.verts[0], poly.verts[i], poly.verts[i + 1]}, source}, eps, out);

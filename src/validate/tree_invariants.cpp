@@ -60,14 +60,27 @@ class Checker {
     const std::uint64_t f = tree_.fragments.size();
     if (st.splits + st.n_input + st.triangulated_extra != f + st.dropped_input + st.dropped_slivers)
       fail("split identity broken: splits=" + std::to_string(st.splits) + " fragments=" + std::to_string(f));
-    double total = 0;
+    // Per source, what its fragments cover of it: a segment's length, a polygon's area projected
+    // onto the input polygon's Newell normal. Projected areas add up exactly under splitting and
+    // fanning (the Newell vector of a polygon is the sum of its pieces'), where the pieces' own
+    // areas exceed the whole's when the input is bent (within plane_eps, or fanned beyond it). The
+    // input's area (BuildStats::input_area) is its Newell area, the same projection.
+    std::vector<Vec3> facing(input.size());
+    for (std::size_t i = 0; i < input.size(); ++i) {
+      const Vec3 n = input[i].verts.size() >= 3 ? newell_normal(input[i]) : Vec3{};
+      if (const double len = length(n); len > 0) facing[i] = n / len;  // a zero-area input covers nothing
+    }
     std::vector<double> per_source(input.size(), 0.0);
     for (const FragmentView frag : tree_.fragments) {
-      const double a = measure(frag.polygon());
-      total += a;
-      if (frag.source < per_source.size()) per_source[frag.source] += a;
-      else fail("fragment source out of range");
+      const Polygon poly = frag.polygon();
+      if (frag.source >= per_source.size()) {
+        fail("fragment source out of range");
+        continue;
+      }
+      per_source[frag.source] += is_segment(poly) ? measure(poly) : 0.5 * dot(newell_normal(poly), facing[frag.source]);
     }
+    double total = 0;
+    for (double covered : per_source) total += covered;
     const double scale = std::max(st.input_area, 1e-300);
     if (std::abs(total + st.dropped_area - st.input_area) > 1e-9 * scale)
       fail("area not conserved: fragments " + std::to_string(total) + " + dropped " +

@@ -7,8 +7,10 @@
 //     (within plane_eps), every one in its back subtree behind or on it;
 //  3. storage: fragments stored at a strict node are coplanar with its plane; a coarse leaf holds a
 //     convex set;
-//  4. conservation: total fragment area + dropped area = input area (relative 1e-9), no source's
-//     fragments exceed its input area, and the split-count identity of BuildStats holds;
+//  4. conservation: the fragments' area + dropped area = input area (relative 1e-9), and no source's
+//     fragments cover more than its input area, each fragment's area projected onto its input
+//     polygon's Newell normal (projected areas add up exactly under splitting and fanning, a bent
+//     polygon's pieces' own areas do not); and the split-count identity of BuildStats holds;
 //  5. shape: no fragment repeats a vertex (two consecutive vertices within plane_eps) or is a
 //     sliver (narrower than plane_eps, is_sliver): shapes the build merges or drops and counts.
 // Cost O(sum over fragments of their depth).
