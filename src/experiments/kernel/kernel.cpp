@@ -48,10 +48,12 @@ std::vector<Polygon> on_grid(std::span<const Polygon> input, const Grid& grid) {
   return out;
 }
 
-// The float kernel's classification of each snapped input polygon kept whole against up to
-// kClassifyPlanes node planes of the exact tree, beside the exact one: how often they differ and
-// how. Polygons snapping fanned are left out (the kernels split them differently).
-json classification_differences(const ExactTree& exact, std::span<const Polygon> snapped, std::span<const Polygon> input) {
+// The float kernel's classification (with tolerance `eps`, the float tree's) of each snapped input
+// polygon kept whole against up to kClassifyPlanes node planes of the exact tree, beside the exact
+// one: how often they differ and how. Polygons snapping fanned are left out (the kernels split them
+// differently).
+json classification_differences(const ExactTree& exact, std::span<const Polygon> snapped, std::span<const Polygon> input,
+                                double eps) {
   const SnappedScene scene = snap_polygons(input);
   std::vector<std::uint32_t> planes;
   const std::size_t every = std::max<std::size_t>(1, exact.tree.nodes.size() / kClassifyPlanes);
@@ -61,7 +63,6 @@ json classification_differences(const ExactTree& exact, std::span<const Polygon>
   for (const PlanePolygon& p : scene.polygons) ++pieces[p.source];
   std::uint64_t tests = 0, differ = 0, flattened = 0, unsplit = 0, other = 0;
   PredicateCounters counters;
-  const double eps = exact.tree.tol.plane_eps;
   for (const PlanePolygon& p : scene.polygons) {
     if (pieces[p.source] != 1 || snapped[p.source].verts.size() != p.size()) continue;
     for (std::uint32_t plane : planes) {
@@ -142,7 +143,7 @@ KernelComparison compare_kernels(std::span<const Polygon> original, Splitter& fl
   m.update(order_counts("exact", exact_order.report));
   m["exact_refused_hits"] = exact_order.refused;
   m["plane_eps"] = tree.tol.plane_eps;
-  m.update(classification_differences(exact, snapped, input));
+  m.update(classification_differences(exact, snapped, input, tree.tol.plane_eps));
   const json stats = to_json(exact.exact);
   m["snap_max_displacement"] = stats["snap"]["max_displacement"];
   m["snap_fanned"] = stats["snap"]["fanned"];
