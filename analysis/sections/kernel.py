@@ -98,6 +98,7 @@ def plot_curves(scene, aggs, field, label, path):
     for ax, metric in zip(axes, metrics):
         ax.set_xscale("log")
         ax.set_yscale("symlog", linthresh=1)
+        ax.set_ylim(bottom=0)
         ax.set_xlabel(label)
         ax.set_title(f"{scene}: {metric}", fontsize=9)
         ax.grid(True, which="both", alpha=0.3)
@@ -123,7 +124,11 @@ def onset_rows(scene, aggs, field):
 
 
 def sweep_part(scene, aggs, field, label, ctx, tables, onsets):
-    swept = [a for a in aggs if field in a and len({b.get(field) for b in aggs}) > 1]
+    # The heuristics this field was swept for (others ran at one value only).
+    values = {}
+    for a in aggs:
+        values.setdefault(a["heuristic"], set()).add(a.get(field))
+    swept = [a for a in aggs if len(values[a["heuristic"]]) > 1]
     if not swept:
         return ""
     png = f"kernel-{slug(scene)}-{field}.png"
