@@ -554,6 +554,28 @@ TEST(PlanePolygon, BoundsInClockwiseOrderAreInvalid) {
   EXPECT_FALSE(is_valid(poly, counters));
 }
 
+// kept_edges (what ExactFragments splits its flat arrays by) lists the bounds part_of keeps, in its
+// order, with the kept vertices those bounds meet in.
+TEST(PlanePolygon, KeptEdgesAreThePartsBoundsAndVertices) {
+  const std::vector<GridPoint> hexagon{{0, 0, 0}, {4, 0, 0}, {6, 3, 0}, {4, 6, 0}, {0, 6, 0}, {-2, 3, 0}};
+  const PlanePolygon poly = *plane_polygon(hexagon, 0);
+  for (const GridPlane& cut : {*plane_through({1, 0, 0}, {1, 1, 0}, {1, 0, 1}), *plane_through({0, 2, 0}, {5, 4, 0}, {0, 2, 1}),
+                               *plane_through({4, 0, 0}, {4, 1, 0}, {4, 0, 1})}) {
+    PredicateCounters counters;
+    const std::vector<int> sides = vertex_sides(poly, cut, counters);
+    for (int keep : {1, -1}) {
+      const PolygonPart part = part_of(poly, sides, keep, cut);
+      std::vector<std::uint32_t> kept;
+      kept_edges(sides, keep, kept);
+      ASSERT_EQ(kept.size() + 1, part.poly.size());
+      for (std::size_t i = 0; i < kept.size(); ++i) {
+        EXPECT_EQ(part.poly.bounds[i], poly.bounds[kept[i]]);
+        if (i + 1 < kept.size()) EXPECT_EQ(part.origin[i], kept[i]);
+      }
+    }
+  }
+}
+
 TEST(PlanePolygon, ClassifiesCoplanarFrontAndBack) {
   const std::vector<GridPoint> square{{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}};
   const PlanePolygon poly = *plane_polygon(square, 0);

@@ -10,7 +10,6 @@
 // form in scene coordinates (a PlanePool), for splitters' estimates and for output. Neither decides
 // a side.
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "geometry/exact_predicates.h"
@@ -42,15 +41,18 @@ class GridPlanePool {
   std::size_t size() const { return 2 * planes_.size(); }
 
  private:
-  struct Hash {
-    std::size_t operator()(const GridPlane& p) const;
-  };
+  // The slot of `key` in index_, or the empty slot where it belongs (linear probing).
+  std::size_t slot(const GridPlane& key) const;
+  // Doubles index_ and reinserts every pair, in index order (deterministic).
+  void grow_index(std::size_t slots);
 
   Grid grid_;
   std::vector<GridPlane> planes_;  // canonical, the orientation whose first nonzero coefficient is positive
   std::vector<PlaneApprox> approx_;
   PlanePool scene_;  // appended in step with planes_, never looked up (two grid planes may round alike)
-  std::unordered_map<GridPlane, std::uint32_t, Hash> index_;  // plane -> pair
+  // Open addressing over planes_: pair + 1 per slot, 0 empty; a power-of-two size, at most half
+  // full. No node per plane (an unordered_map allocates one), one probe most of the time.
+  std::vector<std::uint32_t> index_;
 };
 
 }  // namespace bsp

@@ -58,20 +58,31 @@ std::optional<PlanePolygon> plane_polygon(std::span<const GridPoint> points, std
   return poly;
 }
 
-// The bounds of the edges with an endpoint on `keep`'s side, in order, then the cut. The vertices
-// on the other side form one run (the polygon is convex); the walk starts at the edge leaving that
-// run, so the kept edges are consecutive and the cut closes the part where the run was.
-PolygonPart part_of(const PlanePolygon& poly, std::span<const int> sides, int keep, const GridPlane& cut) {
-  const std::size_t k = poly.size();
+// The edges with an endpoint on `keep`'s side, in order. The vertices on the other side form one
+// run (the polygon is convex); the walk starts at the edge leaving that run, so the kept edges are
+// consecutive and the cut closes the part where the run was.
+void kept_edges(std::span<const int> sides, int keep, std::vector<std::uint32_t>& out) {
+  const std::size_t k = sides.size();
+  out.clear();
   std::size_t run_end = 0;  // both signs occur, so the other side's run has an end
   while (!(sides[run_end] == -keep && sides[(run_end + 1) % k] != -keep)) ++run_end;
-  PolygonPart out{{poly.support, {}, poly.source}, {}};
   for (std::size_t n = 1; n <= k; ++n) {
     const std::size_t j = (run_end + n) % k;  // edge j runs from vertex j - 1 to vertex j
     if (sides[(j + k - 1) % k] != keep && sides[j] != keep) continue;
-    // Consecutive kept edges j - 1 and j meet in the split polygon's vertex j - 1.
-    if (!out.poly.bounds.empty()) out.origin.push_back(static_cast<std::uint32_t>((j + k - 1) % k));
-    out.poly.bounds.push_back(poly.bounds[j]);
+    out.push_back(static_cast<std::uint32_t>(j));
+  }
+}
+
+// The kept edges' bounds, then the cut. Consecutive kept edges j - 1 and j meet in the split
+// polygon's vertex j - 1; the last kept edge meets the cut, and the cut the first, in new vertices.
+PolygonPart part_of(const PlanePolygon& poly, std::span<const int> sides, int keep, const GridPlane& cut) {
+  const std::size_t k = poly.size();
+  std::vector<std::uint32_t> kept;
+  kept_edges(sides.first(k), keep, kept);
+  PolygonPart out{{poly.support, {}, poly.source}, {}};
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    if (i > 0) out.origin.push_back(static_cast<std::uint32_t>((kept[i] + k - 1) % k));
+    out.poly.bounds.push_back(poly.bounds[kept[i]]);
   }
   out.poly.bounds.push_back(keep > 0 ? cut : -cut);
   out.origin.push_back(kNewVertex);  // the last kept edge meets the cut

@@ -59,6 +59,10 @@ struct PolygonPart {
 // The part of `poly` on side `keep` (+1 or -1) of `cut`, bounded by `cut` (keep = +1) or its
 // opposite (keep = -1), given the vertices' sides (vertex_sides), which must include both signs.
 PolygonPart part_of(const PlanePolygon& poly, std::span<const int> sides, int keep, const GridPlane& cut);
+// The edges part_of keeps, as indices of the polygon's bounds in the part's order (the cut follows
+// them): a consecutive run, so the part's vertex i before the last two is the polygon's vertex
+// out[i]. For callers that keep polygons in their own arrays; `out` is cleared first.
+void kept_edges(std::span<const int> sides, int keep, std::vector<std::uint32_t>& out);
 
 // Classifies `poly` against `plane`, exactly: Front when no vertex is behind it (and one is in front),
 // Back likewise, Coplanar when every vertex is on it, else Spanning with both parts: the front part

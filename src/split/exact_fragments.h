@@ -17,11 +17,18 @@
 //
 // Ids and their reuse are the copy's (FragmentStore), so both stores agree on every id. Nothing is
 // ever dropped: a split's parts have positive area by the plane polygons' invariants.
+//
+// Storage, as FragmentStore's: flat arrays, no heap allocation per fragment. Per id a 64-byte
+// Record (box, pooled support, vertex run); per vertex slot its cofactors and 32-bit references to
+// its bound plane and input corner; the input's planes are kept once, with their roundings, and a
+// split's parts refer to them (and to the pooled cut) instead of copying planes. The copy's
+// bounding spheres are not computed (no splitter tests sides on the copy).
 #include <cstdint>
 #include <span>
 #include <vector>
 
 #include "geometry/grid_plane_pool.h"
+#include "common/page_allocator.h"
 #include "geometry/plane_polygon.h"
 #include "split/fragment_store.h"
 
@@ -39,15 +46,19 @@ class ExactFragments {
  public:
   explicit ExactFragments(GridPlanePool& planes) : planes_(planes) {}
 
+  // Room for this many fragments and vertices (FragmentStore::reserve), of which `input_vertices`
+  // given to add(): reserved pages cost nothing until written, and the arrays never copy what they
+  // hold while the build stays below.
+  void reserve(std::size_t fragments, std::size_t vertices, std::size_t input_fragments, std::size_t input_vertices);
   // Pools the polygon's support; `corners` says which of its vertices are grid points (input
   // corners), given in vertex order, or is empty when none is known.
-  std::uint32_t add(PlanePolygon poly, std::span<const GridPoint> corners = {});
+  std::uint32_t add(const PlanePolygon& poly, std::span<const GridPoint> corners = {});
   void release(std::uint32_t id);
-  // The fragment's plane polygon, moved out; the fragment is released.
+  // The fragment's plane polygon; take() releases the fragment.
+  PlanePolygon polygon(std::uint32_t id) const;
   PlanePolygon take(std::uint32_t id);
 
-  const PlanePolygon& polygon(std::uint32_t id) const { return poly_[id]; }
-  std::uint32_t plane(std::uint32_t id) const { return rounded_.plane(id); }  // pooled support
+  std::uint32_t plane(std::uint32_t id) const { return rec_[id].support; }  // pooled support
   const FragmentStore& rounded() const { return rounded_; }
   GridPlanePool& planes() const { return planes_; }
 
@@ -65,34 +76,82 @@ class ExactFragments {
 
   const ExactSideCounters& counters() const { return counters_; }
 
- private:
-  struct Vertex {
-    VertexCofactors cofactors;
-    GridPoint corner;
-    bool on_grid = false;
+  // What count_sides reads of a fragment, one cache line (64 bytes) in one array by id: its
+  // FilterBox and its pooled support, so the box test of a node's fragments loads one line each;
+  // where its vertices are fills the rest of the line.
+  // An unbounded box has NaN half-widths: every comparison with NaN is false, so it decides nothing
+  // in the vector test either, without a branch.
+  struct Record {
+    double centre[3] = {0, 0, 0};
+    double half[3] = {0, 0, 0};
+    std::uint32_t support = 0;  // pooled plane
+    std::uint32_t first = 0;    // the fragment's first vertex slot (bound_, cof_, corner_)
+    std::uint32_t count = 0;    // its vertices
+    std::uint32_t source = 0;   // its input polygon
   };
+  static_assert(sizeof(Record) == 64, "one cache line per fragment");
+
+ private:
+  // A plane a fragment refers to, in 32 bits: with the top bit clear, one of the input's planes as
+  // loaded (a support or an edge plane, kept once in own_ with its rounding); with it set, a pooled
+  // plane (a cut, in either orientation). Parts copy references, never planes.
+  using PlaneRef = std::uint32_t;
+  static constexpr PlaneRef kPooled = 0x80000000u;
+  GridPlane plane_of(PlaneRef r) const { return (r & kPooled) ? planes_[r & ~kPooled] : own_[r]; }
+  PlaneApprox approx_of(PlaneRef r) const { return (r & kPooled) ? planes_.approx(r & ~kPooled) : own_approx_[r]; }
+  FilterBox box(std::uint32_t id) const;
 
   // Side of vertex i of fragment id: +1, -1 or 0.
   int vertex_side(std::uint32_t id, std::size_t i, const GridPlane& plane, const PlaneApprox& approx) const;
-  // Fills sides_ for the fragment's vertices; returns Front/Back/Coplanar/Spanning, stopping at
-  // the first vertex that makes it Spanning unless `all`. vertex_sides skips the whole-fragment tests.
-  Side sides(std::uint32_t id, std::uint32_t plane, bool all) const;
-  Side vertex_sides(std::uint32_t id, std::uint32_t plane, const PlaneApprox& approx, bool all) const;
+  // Front/Back/Coplanar/Spanning from the fragment's vertices alone (no whole-fragment test),
+  // stopping at the first vertex that makes it Spanning unless `sides` is given: then every
+  // vertex's side is written there (+1, -1, 0), as split needs them.
+  Side vertex_sides(std::uint32_t id, std::uint32_t plane, const PlaneApprox& approx, int* sides) const;
   void count_block(std::span<const std::uint32_t> ids, std::span<const std::uint32_t> planes,
                    std::span<SideCounts> out) const;
-  std::uint32_t add_part(PolygonPart part, const std::vector<Vertex>& from);
-  std::uint32_t store(PlanePolygon poly, std::vector<Vertex> verts);
+  // Fragments whose boxes count_block tests before their vertices: their cofactors, prefetched by
+  // the box pass, are still in cache when the vertex pass reads them.
+  static constexpr std::size_t kCountChunk = 32;
+  // The vertex tests of fragment id against the planes[j] of the bits of `open`, counted into out[j].
+  void count_vertices(std::uint32_t id, std::uint32_t open, std::span<const std::uint32_t> planes,
+                      std::span<SideCounts> out) const;
+  // Vertex slots for `count` vertices: a freed run of that length when there is one (as
+  // FragmentStore reuses spans, in a fixed order), else new ones at the end of the arrays.
+  std::uint32_t new_span(std::uint32_t count);
+  void free_span(std::uint32_t first, std::uint32_t count);
+  // Appends an input plane to own_; its reference.
+  PlaneRef own(const GridPlane& p);
+  // One part of a split of the fragment whose slots start at `from`: the bounds at kept_ (the
+  // parent's edge indices) then `cut`, the kept vertices copied, the two new ones computed.
+  std::uint32_t add_part(PlaneRef support, std::uint32_t pooled, std::uint32_t source, std::uint32_t from, PlaneRef cut);
+  // Registers the fragment whose bounds and vertices fill slots [first, first + count): its box,
+  // its rounded copy (which gives the id), its record.
+  std::uint32_t store(PlaneRef support, std::uint32_t pooled, std::uint32_t source, std::uint32_t first,
+                      std::uint32_t count);
 
   GridPlanePool& planes_;
   FragmentStore rounded_;
-  std::vector<PlanePolygon> poly_;          // by id
-  std::vector<std::vector<Vertex>> verts_;  // by id, parallel to poly_[id]'s vertices
-  std::vector<FilterBox> box_;              // by id
+  // The input's planes as given (a support is not replaced by the pool's canonical multiple: the
+  // vertices, cofactors and output are computed from the polygon's own planes), and their roundings.
+  PageVector<GridPlane> own_;
+  PageVector<PlaneApprox> own_approx_;
+  PageVector<GridPoint> corners_;  // the input corners given to add()
+  // By id.
+  PageVector<Record> rec_;
+  PageVector<PlaneRef> support_;
+  // By vertex slot, each fragment's a run of rec_[id].count from rec_[id].first: no heap allocation
+  // per fragment, and freed runs are reused. Bound i of the fragment is bound_[first + i].
+  PageVector<PlaneRef> bound_;
+  PageVector<VertexCofactors> cof_;
+  PageVector<std::uint32_t> corner_;  // the vertex's index in corners_, or kNoCorner
+  static constexpr std::uint32_t kNoCorner = 0xffffffffu;
+  std::vector<std::vector<std::uint32_t>> free_spans_;  // by count: first slots of freed runs
   // Counts and scratch, not state: a store is used by one thread at a time.
   mutable ExactSideCounters counters_;
-  mutable std::vector<int> sides_;
+  std::vector<int> sides_;  // split's
+  std::vector<std::uint32_t> kept_;
   std::vector<PlaneApprox> bounds_approx_;
-
+  Polygon rounded_scratch_;
 };
 
 }  // namespace bsp

@@ -237,10 +237,13 @@ ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, c
   GridPlanePool pool(snapped.grid);
   pool.reserve(snapped.polygons.size());
   ExactFragments frags(pool);
+  std::size_t vertices = 0;
+  for (const PlanePolygon& p : snapped.polygons) vertices += p.size();
+  frags.reserve(FragmentStore::kGrowthRoom * snapped.polygons.size(), FragmentStore::kGrowthRoom * vertices,
+                snapped.polygons.size(), vertices);
   std::vector<std::uint32_t> ids;
   ids.reserve(snapped.polygons.size());
-  for (std::size_t i = 0; i < snapped.polygons.size(); ++i)
-    ids.push_back(frags.add(std::move(snapped.polygons[i]), snapped.corners[i]));
+  for (std::size_t i = 0; i < snapped.polygons.size(); ++i) ids.push_back(frags.add(snapped.polygons[i], snapped.corners[i]));
   snapped.polygons = {};
   snapped.corners = {};
   out.exact.load_seconds = seconds_since(load);
