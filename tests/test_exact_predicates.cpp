@@ -456,7 +456,9 @@ void check_box_and_vertex_filters(const PlanePolygon& poly, const GridPlane& pla
   for (std::size_t i = 0; i < poly.size(); ++i) {
     cofactors.push_back(*vertex_cofactors(poly.support, poly.before(i), poly.after(i), counters));
     const auto f = detail::filtered_side(cofactors.back(), approx);
-    if (f.decided) ASSERT_EQ(f.sign, sides[i]);
+    if (f.decided) {
+      ASSERT_EQ(f.sign, sides[i]);
+    }
   }
   const auto whole = detail::filtered_box_side(filter_box(cofactors.data(), cofactors.size()), approx);
   if (!whole.decided) return;
@@ -570,7 +572,9 @@ TEST(PlanePolygon, KeptEdgesAreThePartsBoundsAndVertices) {
       ASSERT_EQ(kept.size() + 1, part.poly.size());
       for (std::size_t i = 0; i < kept.size(); ++i) {
         EXPECT_EQ(part.poly.bounds[i], poly.bounds[kept[i]]);
-        if (i + 1 < kept.size()) EXPECT_EQ(part.origin[i], kept[i]);
+        if (i + 1 < kept.size()) {
+          EXPECT_EQ(part.origin[i], kept[i]);
+        }
       }
     }
   }
