@@ -8,6 +8,8 @@
 #include "catalog.h"
 #include "experiments/kernel/kernel.h"
 #include "geometry/grid_plane_pool.h"
+#include "geometry/snap.h"
+#include "split/exact_fragments.h"
 #include "split/registry.h"
 #include "tree/build.h"
 #include "tree/exact_build.h"
@@ -92,7 +94,8 @@ TEST(ExactBuild, HalvingsFreePlanesAreRoundedToGridPlanes) {
 }
 
 // Faults planted in a correct tree: children swapped (fragments on the wrong side of their
-// parent's plane), and a fragment's support replaced by another plane (not in its node's plane).
+// parent's plane), and the root's fragment replaced by a valid fragment of another plane (the root
+// has no ancestor, so only the storage check can see it).
 TEST(ExactInvariants, CatchSwappedChildrenAndAFragmentOffItsNodesPlane) {
   const Scene s = make_scene("random-triangles", {{"n", "100"}});
   const ExactTree good = build_exact(s.polygons, "crystal");
@@ -104,8 +107,14 @@ TEST(ExactInvariants, CatchSwappedChildrenAndAFragmentOffItsNodesPlane) {
   swapped.tree.nodes[node].plane = PlanePool::flip(swapped.tree.nodes[node].plane);
   EXPECT_FALSE(check_exact_invariants(swapped).ok());
   ExactTree moved = good;
-  moved.fragments[0].support = moved.fragments.back().support;
-  EXPECT_FALSE(check_exact_invariants(moved).ok());
+  const GridPlane root = canonical(good.plane(good.tree.nodes[0].plane));
+  std::size_t other = 1;
+  while (canonical(good.fragments[other].support) == root || canonical(-good.fragments[other].support) == root) ++other;
+  ASSERT_EQ(good.tree.fragments_of(0).begin, 0u);
+  moved.fragments[0] = good.fragments[other];
+  const ExactInvariantReport r = check_exact_invariants(moved);
+  ASSERT_EQ(r.violations, 1u);
+  EXPECT_NE(r.first_problems.front().find("not in its node's plane"), std::string::npos);
 }
 
 TEST(GridPlane, RoundedFreePlanesStayInBoundsAndNearTheirPlane) {
@@ -142,13 +151,14 @@ TEST(GridPlanePool, OnePlaneMadeFromDifferentPointsHasOneIndex) {
 TEST(GridPlane, CanonicalFormForgetsACommonFactor) {
   Rng rng(9);
   for (int i = 0; i < 2000; ++i) {
-    // Coefficients below 2^62 times a factor below 2^64: the products stay below 2^127.
-    const auto coordinate = [&] { return static_cast<std::int64_t>(rng.below(std::uint64_t{1} << 20)) - (std::int64_t{1} << 19); };
+    // Coordinates below 2^9: normals below 2^21, offsets below 2^32; a factor below 2^94 keeps the
+    // products below 2^127 and makes the common divisor wider than 64 bits.
+    const auto coordinate = [&] { return static_cast<std::int64_t>(rng.below(std::uint64_t{1} << 10)) - (std::int64_t{1} << 9); };
     const auto p = plane_through({coordinate(), coordinate(), coordinate()}, {coordinate(), coordinate(), coordinate()},
                                  {coordinate(), coordinate(), coordinate()});
     if (!p) continue;
     const GridPlane c = canonical(*p);
-    const Int128 k = static_cast<Int128>(1 + rng.below(std::uint64_t{1} << 54)) * static_cast<Int128>(1 + rng.below(1000));
+    const Int128 k = static_cast<Int128>(1 + rng.below(std::uint64_t{1} << 60)) * static_cast<Int128>(1 + rng.below(std::uint64_t{1} << 33));
     const GridPlane scaled{c.a * k, c.b * k, c.c * k, c.d * k};
     EXPECT_EQ(canonical(scaled), c);
     EXPECT_EQ(canonical(-scaled), -c);
@@ -181,8 +191,8 @@ TEST(ExactValidation, CatchesAnOrderFromAFlippedPlane) {
   EXPECT_GT(validate_exact_tree(t, settings).report.violations, 0u);
 }
 
-// Two unit squares in one plane overlapping, and a third touching them along an edge: the exact
-// check calls the first pair coplanar ties and never judges a true tie as a violation.
+// Two unit squares overlapping in one plane, and a third far from them: the exact check counts the
+// overlap's hit pairs as coplanar ties and draws no pair in the wrong order.
 TEST(ExactValidation, CoplanarOverlapsAreTiesAndNothingElseIs) {
   const auto square = [](double x0, double z, std::uint32_t source) {
     return Polygon{{{{x0, 0, z}}, {{x0 + 1, 0, z}}, {{x0 + 1, 1, z}}, {{x0, 1, z}}}, source};
@@ -228,4 +238,47 @@ TEST(KernelComparison, PerturbedInputKeepsBothTreesInvariants) {
   const experiments::KernelComparison c = experiments::compare_kernels(s.polygons, *a, *b, settings);
   EXPECT_EQ(c.invariants["violations"].get<std::uint64_t>(), 0u);
   EXPECT_GT(c.metrics["snap_fanned"].get<std::uint64_t>(), 0u);  // the exact kernel saw bent quads too
+}
+
+// count_sides (blocks of planes, the box pass in SSE2 or AVX, the vertex pass) counts exactly what
+// classify decides one pair at a time: random triangles and their split parts against 1 to 33 of
+// their own planes (odd counts, partial blocks, each fragment's own support among them).
+TEST(ExactFragments, CountSidesEqualsClassifyingEachPair) {
+  const Scene s = make_scene("random-triangles", {{"n", "120"}});
+  SnappedScene snapped = snap_polygons(s.polygons);
+  GridPlanePool pool(snapped.grid);
+  ExactFragments frags(pool);
+  std::vector<std::uint32_t> ids;
+  for (std::size_t i = 0; i < snapped.polygons.size(); ++i)
+    ids.push_back(frags.add(snapped.polygons[i], snapped.corners[i]));
+  // Split some by others' planes, so parts with new vertices (no input corners) are counted too.
+  for (std::size_t i = 0; i + 1 < 40; ++i) {
+    const std::uint32_t plane = frags.plane(ids[i + 1]);
+    if (frags.classify(ids[i], plane) != Side::Spanning) continue;
+    const auto parts = frags.split(ids[i], plane);
+    ids[i] = parts.front;
+    ids.push_back(parts.back);
+  }
+  std::vector<std::uint32_t> planes;
+  for (std::size_t k = 0; k < 33; ++k) planes.push_back(frags.plane(ids[(k * 7) % ids.size()]) ^ (k & 1u));
+  for (std::size_t count : {1u, 2u, 3u, 4u, 5u, 31u, 32u, 33u}) {
+    const std::span<const std::uint32_t> some(planes.data(), count);
+    std::vector<SideCounts> counted(count);
+    frags.count_sides(ids, some, counted);
+    for (std::size_t j = 0; j < count; ++j) {
+      SideCounts one;
+      for (auto id : ids) switch (frags.classify(id, some[j])) {
+          case Side::Front: ++one.front; break;
+          case Side::Back: ++one.back; break;
+          case Side::Coplanar: ++one.coplanar; break;
+          case Side::Spanning: ++one.spanning; break;
+        }
+      EXPECT_EQ(counted[j].front, one.front) << count << " " << j;
+      EXPECT_EQ(counted[j].back, one.back) << count << " " << j;
+      EXPECT_EQ(counted[j].coplanar, one.coplanar) << count << " " << j;
+      EXPECT_EQ(counted[j].spanning, one.spanning) << count << " " << j;
+      EXPECT_EQ(one.front + one.back + one.coplanar + one.spanning, ids.size());
+    }
+  }
+  EXPECT_GT(frags.counters().boxes, 1000u);  // the box pass decided most pairs
 }

@@ -12,11 +12,12 @@ from tables import Column, Table
 
 KERNEL_COLUMNS = (("metrics", "float_fragments", "fragments, float kernel"),
                   ("metrics", "exact_fragments", "fragments, exact kernel"),
-                  ("metrics", "float_dropped", "fragments the float kernel dropped as slivers (exact: never)"),
-                  ("metrics", "float_ties", "hit pairs the float order check left to the tolerance"),
-                  ("metrics", "exact_ties", "hit pairs meeting the ray in one point (exact)"),
-                  ("metrics", "float_pairs_checked", "fragment pairs judged, float"),
-                  ("metrics", "exact_pairs_checked", "fragment pairs judged, exact"),
+                  ("metrics", "float_dropped", "inputs and split parts the float kernel dropped as slivers"),
+                  ("metrics", "float_ties", "hit pairs (per ray) the float order check left to the tolerance"),
+                  ("metrics", "exact_ties", "hit pairs (per ray) meeting the ray in one point (exact)"),
+                  ("metrics", "float_hit_pairs", "hit pairs on all rays, float"),
+                  ("metrics", "float_pairs_checked", "distinct fragment pairs judged, float"),
+                  ("metrics", "exact_pairs_checked", "distinct fragment pairs judged, exact"),
                   ("metrics", "float_violations", "pairs the float tree draws in the wrong order"),
                   ("metrics", "classify_differences", "input polygon x node plane classifications that differ"),
                   ("metrics", "classify_tests", "classifications compared"),
@@ -35,14 +36,17 @@ def plot_kernel(scene, aggs, path):
     for agg in aggs:
         entries = agg["by_n"]
         xs = [e["n_polygons"]["mean"] for e in entries]
-        ties = [(x, ratio(e, "float_ties", "float_pairs_checked")) for x, e in zip(xs, entries)]
-        cost = [(x, (value(e, "timings", "exact_build_cpu_seconds") or 0) / (value(e, "timings", "float_build_cpu_seconds") or 1))
-                for x, e in zip(xs, entries)]
+        ties = [(x, ratio(e, "float_ties", "float_hit_pairs")) for x, e in zip(xs, entries)]
+        cost = []
+        for x, e in zip(xs, entries):
+            exact, flt = value(e, "timings", "exact_build_cpu_seconds"), value(e, "timings", "float_build_cpu_seconds")
+            if exact is not None and flt:
+                cost.append((x, exact / flt))
         for ax, pts in zip(axes, (ties, cost)):
             pts = [(x, y) for x, y in pts if y is not None]
             if pts:
                 ax.plot(*zip(*pts), marker="o", label=agg["heuristic"])
-    for ax, title in zip(axes, ("float ties per judged pair (exact: none but true ties)", "exact build / float build")):
+    for ax, title in zip(axes, ("float ties per hit pair (exact: none but true ties)", "exact build / float build")):
         ax.set_xscale("log")
         ax.set_xlabel("polygons (n)")
         ax.set_title(f"{scene}: {title}", fontsize=9)

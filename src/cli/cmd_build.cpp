@@ -18,7 +18,7 @@ int run(Args& args) {
   const bool json = args.flag("--json");
   Scene scene = scene_from_args(args, seed);
   TreeArgs t = tree_args_from(args, seed);
-  t.kernel = kernel_from(args, t);
+  t.kernel = kernel_from(args, t, scene);
   const MetricsSettings settings = metrics_settings_from(args, seed);
   args.finish();
   nlohmann::json out = describe_run(scene, t);

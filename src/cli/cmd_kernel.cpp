@@ -2,7 +2,9 @@
 // side (experiments/kernel/kernel.h, the run a suite's "kernels" block makes): size, shape, what the
 // tolerance dropped, both orders checked, classifications that differ, predicates, build times.
 // Exit code 1 when the exact tree's order or either tree's invariants fail.
+#include <cstdio>
 #include <iostream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +19,12 @@ namespace bsp::cli {
 
 namespace {
 
+std::string short_text(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
 int run(Args& args) {
   std::uint64_t seed = 1;
   const bool json = args.flag("--json");
@@ -26,9 +34,11 @@ int run(Args& args) {
   settings.plane_eps_relative = args.real("--plane-eps").value_or(kPlaneEpsRelative);
   settings.perturbation = args.real("--perturb").value_or(0.0);
   if (!(settings.plane_eps_relative >= experiments::kMinRelative && settings.plane_eps_relative <= experiments::kMaxRelative))
-    throw UsageError("--plane-eps wants a value in [1e-15, 1e-2] (of the scene's diagonal)");
+    throw UsageError("--plane-eps wants a value in [" + short_text(experiments::kMinRelative) + ", " +
+                     short_text(experiments::kMaxRelative) + "] (of the scene's diagonal)");
   if (!(settings.perturbation >= 0 && settings.perturbation <= experiments::kMaxRelative))
-    throw UsageError("--perturb wants a value in [0, 1e-2] (of the scene's diagonal)");
+    throw UsageError("--perturb wants a value in [0, " + short_text(experiments::kMaxRelative) +
+                     "] (of the scene's diagonal)");
   Scene scene = scene_from_args(args, seed);
   TreeArgs t = tree_args_from(args, seed);
   if (t.options.incremental || t.options.shape != Shape::Strict)

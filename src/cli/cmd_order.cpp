@@ -59,7 +59,7 @@ int run(Args& args) {
   const Vec3 eye = *eye_option;
   Scene scene = scene_from_args(args, seed);
   TreeArgs t = tree_args_from(args, seed);
-  t.kernel = kernel_from(args, t);
+  t.kernel = kernel_from(args, t, scene);
   args.finish();
   nlohmann::json order = describe_run(scene, t);
   order["eye"] = {eye.x, eye.y, eye.z};

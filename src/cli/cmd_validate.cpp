@@ -30,7 +30,6 @@ void print(const nlohmann::json& out, bool json) {
 
 // The exact kernel's tree, its order from each eye snapped to the grid, every hit decided exactly.
 int run_exact(const Scene& scene, const TreeArgs& t, const ValidationSettings& settings, bool json) {
-  if (all_segments(scene.polygons)) throw UsageError("--kernel exact validates 3D scenes; this one is 2D segments");
   const ExactTree tree = build_exact_from_args(scene, t);
   const ExactValidationReport report = validate_exact_tree(tree, settings);
   nlohmann::json out = describe_run(scene, t);
@@ -47,7 +46,7 @@ int run(Args& args) {
   settings.views = static_cast<int>(args.integer("--views", 1, kMaxViews).value_or(settings.views));
   Scene scene = scene_from_args(args, seed);
   TreeArgs t = tree_args_from(args, seed);
-  t.kernel = kernel_from(args, t);
+  t.kernel = kernel_from(args, t, scene);
   args.finish();
   if (t.kernel == Kernel::Exact) return run_exact(scene, t, settings, json);
   const Tree tree = build_from_args(scene, t);

@@ -9,6 +9,7 @@
 #include "common/errors.h"
 #include "experiments/draw/draw.h"
 #include "io/mesh_reader.h"
+#include "geometry/segment2.h"
 #include "mesh_scenes.h"
 #include "split/registry.h"
 
@@ -116,12 +117,14 @@ Tree build_from_args(const Scene& scene, const TreeArgs& t) {
   return experiments::build_drawing(scene.polygons, splitter.get(), t.options);
 }
 
-Kernel kernel_from(Args& args, const TreeArgs& t) {
+Kernel kernel_from(Args& args, const TreeArgs& t, const Scene& scene) {
   const std::string name = args.option("--kernel").value_or("float");
   const auto kernel = kernel_named(name);
   if (!kernel) throw UsageError("--kernel must be float or exact, not '" + name + "'");
   if (*kernel == Kernel::Exact && (t.options.incremental || t.options.shape == Shape::Leafy))
     throw UsageError("--kernel exact builds strict and coarse trees recursively: drop --incremental and --shape leafy");
+  if (*kernel == Kernel::Exact && all_segments(scene.polygons))
+    throw UsageError("--kernel exact builds 3D scenes; this one is 2D segments");
   return *kernel;
 }
 

@@ -58,8 +58,9 @@ TreeArgs tree_args_from(Args& args, std::uint64_t seed);
 // that does not name a heuristic, for commands that run several).
 BuildOptions build_options_from(Args& args, std::uint64_t seed);
 Tree build_from_args(const Scene& scene, const TreeArgs& t);
-// --kernel float|exact (default float); exact refuses --incremental and --shape leafy in `t`.
-Kernel kernel_from(Args& args, const TreeArgs& t);
+// --kernel float|exact (default float); exact refuses --incremental and --shape leafy in `t`, and
+// a 2D scene.
+Kernel kernel_from(Args& args, const TreeArgs& t, const Scene& scene);
 ExactTree build_exact_from_args(const Scene& scene, const TreeArgs& t);
 // --shape strict|coarse|leafy alone (default strict), for commands whose builds are never incremental.
 Shape shape_from(Args& args);

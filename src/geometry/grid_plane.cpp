@@ -84,8 +84,7 @@ std::optional<GridPlane> round_plane(const Plane& p, const Grid& grid) {
   std::frexp(m, &x);
   const int e = kFreeNormalBits - x;
   const double offset = std::ldexp((dot(p.n, grid.origin()) + p.d) / grid.step(), e);
-  constexpr double kOffsetLimit = 0x1p82;
-  if (!(std::abs(offset) < kOffsetLimit)) return std::nullopt;
+  if (!(std::abs(offset) < kFreeOffsetLimit)) return std::nullopt;
   const auto round = [](double v) { return static_cast<Int128>(static_cast<std::int64_t>(std::nearbyint(v))); };
   const auto round_big = [](double v) {  // |v| < 2^82: the rounded magnitude is split at 2^64 exactly
     const double r = std::nearbyint(std::abs(v));

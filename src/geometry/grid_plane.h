@@ -57,14 +57,19 @@ GridPlane canonical(const GridPlane& p);
 // scene's object planes) to a grid plane, the kernel's one rounding of a plane. The rule: in grid
 // coordinates the plane is n . g + (n . origin + d) / step = 0; scale it by the power of two
 // 2^e that brings its largest normal component into [2^(kFreeNormalBits - 1), 2^kFreeNormalBits),
-// round each normal component and the offset to the nearest integer (the scaling is exact, the
-// offset (n . origin + d) / step rounds once in doubles before), and take canonical(). The normal
-// then turns by at most about 2^(1 - kFreeNormalBits) radians and the plane moves by at most
-// about a grid step near the scene, far less than snapping moves a vertex. Coefficients stay below
-// an edge plane's (normal < 2^41, offset < 2^83), inside the predicates' bounds. nullopt when the
-// plane lies beyond every grid point (its offset would exceed 2^82: it cuts nothing) or has a
-// zero or non-finite normal.
+// round each normal component and the offset to the nearest integer (the scaling is exact; the
+// offset n . origin + d is computed in doubles first, a few roundings of u |origin| each), and
+// take canonical(). The rule is deterministic; how far it moves the plane: the normal turns by at
+// most about 2^(1 - kFreeNormalBits) radians (about 1.4 grid steps across the grid's reach), and
+// the offset moves by half a step plus the doubles' rounding, a few u |origin| / step steps (for a
+// scene whose box is far from the world's origin, tens of steps). Coefficients stay below an edge
+// plane's (normal < 2^41, offset < 2^83), inside the predicates' bounds. nullopt when the plane
+// lies beyond every grid point (its offset would reach kFreeOffsetLimit: every grid point's value
+// n . g is below 3 * 2^kFreeNormalBits * 2^kGridBits < 2^82, so it cuts nothing) or has a zero or
+// non-finite normal.
 inline constexpr int kFreeNormalBits = 40;
+inline constexpr double kFreeOffsetLimit = 0x1p82;
+static_assert(kFreeNormalBits + kGridBits + 2 <= 82, "a rounded plane beyond kFreeOffsetLimit must miss every grid point");
 std::optional<GridPlane> round_plane(const Plane& p, const Grid& grid);
 
 }  // namespace bsp

@@ -23,16 +23,26 @@ namespace {
 // (SideCounter reads the exact fragments), so computing them would be wasted.
 constexpr BoundingSphere kNoSphere{{0, 0, 0}, std::numeric_limits<double>::infinity()};
 
-// The rounded copy of a fragment into `out`: each vertex from its cofactors (x = C_0 / C_3 and so
-// on, in grid units), an estimate for splitters only.
-void rounded_polygon(std::span<const VertexCofactors> cofactors, const Grid& grid, std::uint32_t source, Polygon& out) {
+}  // namespace
+
+// Each vertex from its cofactors (x = C_0 / C_3 and so on, in grid units) where C~_3 exceeds twice
+// its error bound (filter_box's condition: the quotient is then within a few grid steps' worth of
+// rounding); else from its three planes (vertex_position), since a C~_3 that small can be far off.
+void ExactFragments::rounded_polygon(PlaneRef support, std::uint32_t first, std::uint32_t count, std::uint32_t source,
+                                     Polygon& out) const {
+  const Grid& grid = planes_.grid();
   out.source = source;
   out.verts.clear();
-  for (const VertexCofactors& c : cofactors)
-    out.verts.push_back({grid.origin() + Vec3{c.c[0] / c.c[3], c.c[1] / c.c[3], c.c[2] / c.c[3]} * grid.step()});
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const VertexCofactors& c = cof_[first + i];
+    if (c.c[3] > 2 * c.error_d) {
+      out.verts.push_back({grid.origin() + Vec3{c.c[0] / c.c[3], c.c[1] / c.c[3], c.c[2] / c.c[3]} * grid.step()});
+      continue;
+    }
+    const auto p = vertex_position(plane_of(support), plane_of(bound_[first + i]), plane_of(bound_[first + (i + 1) % count]), grid);
+    out.verts.push_back({p.value_or(grid.origin())});  // every vertex of a valid plane polygon is defined
+  }
 }
-
-}  // namespace
 
 void ExactFragments::reserve(std::size_t fragments, std::size_t vertices, std::size_t input_fragments,
                              std::size_t input_vertices) {
@@ -87,7 +97,7 @@ FilterBox ExactFragments::box(std::uint32_t id) const {
 std::uint32_t ExactFragments::store(PlaneRef support, std::uint32_t pooled, std::uint32_t source,
                                     std::uint32_t first, std::uint32_t count) {
   const std::span<const VertexCofactors> cofactors(cof_.data() + first, count);
-  rounded_polygon(cofactors, planes_.grid(), source, rounded_scratch_);
+  rounded_polygon(support, first, count, source, rounded_scratch_);
   const std::uint32_t id = rounded_.add(rounded_scratch_, pooled, kNoSphere);
   if (id >= rec_.size()) {
     rec_.resize(id + 1);

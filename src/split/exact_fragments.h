@@ -121,6 +121,9 @@ class ExactFragments {
   void free_span(std::uint32_t first, std::uint32_t count);
   // Appends an input plane to own_; its reference.
   PlaneRef own(const GridPlane& p);
+  // The rounded copy of the fragment whose vertex slots are [first, first + count).
+  void rounded_polygon(PlaneRef support, std::uint32_t first, std::uint32_t count, std::uint32_t source,
+                       Polygon& out) const;
   // One part of a split of the fragment whose slots start at `from`: the bounds at kept_ (the
   // parent's edge indices) then `cut`, the kept vertices copied, the two new ones computed.
   std::uint32_t add_part(PlaneRef support, std::uint32_t pooled, std::uint32_t source, std::uint32_t from, PlaneRef cut);

@@ -6,7 +6,7 @@ namespace bsp {
 
 std::optional<GridPoint> snap_eye(const Grid& grid, const Vec3& p) {
   const Vec3 d = (p - grid.origin()) / grid.step();
-  constexpr double kLimit = 0x1p52 - 0.5;
+  const double kLimit = std::ldexp(1.0, kEyeBits) - 0.5;
   if (!(std::abs(d.x) < kLimit && std::abs(d.y) < kLimit && std::abs(d.z) < kLimit)) return std::nullopt;
   return GridPoint{std::llround(d.x), std::llround(d.y), std::llround(d.z)};
 }

@@ -18,7 +18,8 @@
 
 namespace bsp {
 
-// |grid coordinate| < 2^kEyeBits for an eye: four thousand scene diagonals beyond the box.
+// |grid coordinate| < 2^kEyeBits for an eye: 2,600 to 5,200 scene diagonals from the box's centre
+// (the grid step is 0.58 to 1.15 times 1e-12 of the diagonal).
 inline constexpr int kEyeBits = 52;
 
 // The grid point nearest p, or nullopt beyond kEyeBits.

@@ -15,7 +15,8 @@ class Checker {
     if (tree.fragments.size() != t_.fragments.size()) fail("view and plane polygons differ in number");
     check_conservation();
     if (tree.empty()) return std::move(report_);
-    check_structure();
+    // A tree whose structure is broken cannot be walked safely: stop at its first structural fault.
+    if (!check_structure()) return std::move(report_);
     for (std::uint32_t f = 0; f < t_.fragments.size(); ++f)
       if (!is_valid(t_.fragments[f], report_.predicates)) fail("fragment " + std::to_string(f) + " is not a valid plane polygon");
     check_nodes();
@@ -25,12 +26,17 @@ class Checker {
  private:
   void fail(std::string what) {
     ++report_.violations;
-    if (report_.first_problems.size() < 10) report_.first_problems.push_back(std::move(what));
+    if (report_.first_problems.size() < kMaxProblems) report_.first_problems.push_back(std::move(what));
   }
 
-  // Pre-order with the front child first: walking the tree so must meet nodes 0, 1, 2, ...
-  void check_structure() {
+  // Pre-order with the front child first: walking the tree so must meet nodes 0, 1, 2, ...; the
+  // fragment ranges start at 0, never decrease and stay within the fragments. Records each node's
+  // parent and side for check_nodes. False at the first fault.
+  bool check_structure() {
+    const std::uint64_t before = report_.violations;
     const auto& nodes = t_.tree.nodes;
+    parent_.assign(nodes.size(), kNull);
+    parent_front_.assign(nodes.size(), true);
     std::vector<std::uint32_t> stack{0};
     std::uint32_t expected = 0;
     while (!stack.empty()) {
@@ -38,43 +44,40 @@ class Checker {
       stack.pop_back();
       if (n >= nodes.size() || n != expected++) {
         fail("nodes are not in pre-order at node " + std::to_string(n));
-        return;
+        return false;
       }
-      if (nodes[n].back != kNull) stack.push_back(nodes[n].back);
-      if (nodes[n].front != kNull) stack.push_back(nodes[n].front);
+      for (const bool front : {false, true}) {
+        const std::uint32_t child = front ? nodes[n].front : nodes[n].back;
+        if (child == kNull) continue;
+        if (child < nodes.size()) {
+          parent_[child] = n;
+          parent_front_[child] = front;
+        }
+        stack.push_back(child);
+      }
     }
-    if (expected != nodes.size()) fail("unreachable nodes");
-    for (std::uint32_t n = 0; n + 1 < nodes.size(); ++n)
-      if (nodes[n].first > nodes[n + 1].first) fail("fragment ranges out of order at node " + std::to_string(n));
+    if (expected != nodes.size()) {
+      fail("unreachable nodes");
+      return false;
+    }
+    const auto fragments = static_cast<std::uint32_t>(t_.fragments.size());
+    if (nodes[0].first != 0) fail("the root's fragments do not start at 0");
+    for (std::uint32_t n = 0; n < nodes.size(); ++n)
+      if (nodes[n].first > fragments || (n + 1 < nodes.size() && nodes[n].first > nodes[n + 1].first))
+        fail("fragment ranges out of order or out of range at node " + std::to_string(n));
+    return report_.violations == before;
   }
 
-  // Each fragment against its own node (storage) and against every ancestor (separation): the walk
-  // carries the oriented planes of the path, each with the cell in front of it.
+  // Each fragment against its own node (storage) and against every ancestor (separation), found by
+  // walking the parent links up: O(depth) per fragment and no copy of the path.
   void check_nodes() {
     const auto& nodes = t_.tree.nodes;
-    struct Pending {
-      std::uint32_t node;
-      std::vector<std::uint32_t> path;  // oriented pooled planes: the subtree is in front of each
-    };
-    std::vector<Pending> stack{{0, {}}};
-    while (!stack.empty()) {
-      Pending p = std::move(stack.back());
-      stack.pop_back();
-      const Node& n = nodes[p.node];
-      const FragmentRange r = t_.tree.fragments_of(p.node);
+    for (std::uint32_t n = 0; n < nodes.size(); ++n) {
+      const FragmentRange r = t_.tree.fragments_of(n);
       for (std::uint32_t f = r.begin; f < r.end; ++f) {
-        check_storage(n, f, r);
-        for (auto plane : p.path) check_side(f, plane);
-      }
-      if (n.plane == kNull) continue;
-      if (n.back != kNull) {
-        std::vector<std::uint32_t> path = p.path;
-        path.push_back(PlanePool::flip(n.plane));
-        stack.push_back({n.back, std::move(path)});
-      }
-      if (n.front != kNull) {
-        p.path.push_back(n.plane);
-        stack.push_back({n.front, std::move(p.path)});
+        check_storage(nodes[n], f, r);
+        for (std::uint32_t child = n, up = parent_[n]; up != kNull; child = up, up = parent_[up])
+          check_side(f, parent_front_[child] ? nodes[up].plane : PlanePool::flip(nodes[up].plane));
       }
     }
   }
@@ -112,8 +115,12 @@ class Checker {
     if (s.dropped_slivers != 0) fail("the exact build dropped a sliver");
   }
 
+  static constexpr std::size_t kMaxProblems = 10;  // reported by text; all are counted
+
   const ExactTree& t_;
   ExactInvariantReport report_;
+  std::vector<std::uint32_t> parent_;  // by node, from check_structure
+  std::vector<bool> parent_front_;     // whether the node is its parent's front child
 };
 
 }  // namespace

@@ -8,8 +8,10 @@
 //     (equality of canonical grid planes); a coarse leaf's fragments are a convex set;
 //  4. shape: every fragment is a valid plane polygon (is_valid: defined vertices, counter-clockwise,
 //     no zero-length edge), so nothing the build made is a sliver;
-//  5. conservation: fragments = usable inputs + splits (nothing dropped after snapping).
-// Cost O(sum over fragments of depth * vertices) predicates.
+//  5. bookkeeping: fragments = usable inputs + splits (nothing dropped after snapping), from the
+//     build's own counters.
+// Cost O(sum over fragments of depth * vertices) predicates, O(nodes) memory. A tree whose structure
+// is broken (a cycle, a child out of range) is reported at its first structural fault and not walked.
 #include <cstdint>
 #include <string>
 #include <vector>

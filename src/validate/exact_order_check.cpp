@@ -13,6 +13,9 @@ namespace {
 
 using Wide = WideInt<5>;
 constexpr std::size_t kRaysPerBatch = 64;
+// A thread's pair keys are sorted and deduplicated once they exceed this many, which bounds memory
+// on views whose rays cross many fragments (as the float check does, order_check.cpp).
+constexpr std::size_t kCompactAt = std::size_t{1} << 22;
 
 Wide wide(std::int64_t v) { return Wide(Int128{v}); }
 
@@ -63,7 +66,21 @@ std::uint64_t unordered_key(std::uint32_t a, std::uint32_t b) {
 struct Tally {
   std::vector<std::uint64_t> checked, violating;  // unordered pair keys
   std::uint64_t hits = 0, hit_pairs = 0, coplanar = 0, touching = 0, refused = 0;
+  std::size_t compact_checked_at = kCompactAt, compact_violating_at = kCompactAt;
 };
+
+void sort_unique(std::vector<std::uint64_t>& keys) {
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+}
+
+// Compacts a key list once it exceeds `at`, then moves `at` to twice what is left, so a view with
+// more distinct pairs than kCompactAt is not sorted again after every batch.
+void compact_if_due(std::vector<std::uint64_t>& keys, std::size_t& at) {
+  if (keys.size() <= at) return;
+  sort_unique(keys);
+  at = std::max(kCompactAt, 2 * keys.size());
+}
 
 class ViewCheck {
  public:
@@ -118,11 +135,6 @@ class ViewCheck {
   std::vector<ExactHit> hits_;
 };
 
-void sort_unique(std::vector<std::uint64_t>& keys) {
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-}
-
 // One view: its rays in batches over the threads; counts are sums and set sizes, the same on any
 // thread count.
 void check_view(const ExactTree& t, const EmbreeScene& scene, const std::vector<Polygon>& fragments,
@@ -151,6 +163,8 @@ void check_view(const ExactTree& t, const EmbreeScene& scene, const std::vector<
       const std::size_t count = std::min(kRaysPerBatch, rays.size() - first);
       scene.all_hits(std::span<const Ray>(rays).subspan(first, count), batch);
       for (std::size_t i = 0; i < count; ++i) view.check(exact[first + i], batch.of(i), mine);
+      compact_if_due(mine.checked, mine.compact_checked_at);
+      compact_if_due(mine.violating, mine.compact_violating_at);
     }
     sort_unique(mine.checked);
     sort_unique(mine.violating);

@@ -1,5 +1,6 @@
 #pragma once
-// Checking an exact tree's back-to-front orders with every decision exact (tree/exact_build.h).
+// Checking an exact tree's back-to-front orders with every decision about a proposed hit exact
+// (tree/exact_build.h).
 //
 // The eyes are validation_eyes snapped to the scene's grid, and every ray runs from its eye to a
 // grid point (its direction's point one scene diagonal away, snapped), so a ray is E + t D with
@@ -11,7 +12,10 @@
 //    of A . D or zero (the boundary counts as inside);
 //  - two hits are ordered by comparing -S_f(E) / (A_f . D) with -S_g(E) / (A_g . D) by cross
 //    multiplication. Equal parameters are the only ties: the same point of the ray on two
-//    fragments, either coplanar (the same support plane: an overlap) or touching there.
+//    fragments, either coplanar (the same support plane: overlapping there, or two pieces sharing
+//    an edge the ray crosses) or touching there.
+// A fragment the ray meets that neither Embree nor the double test proposes is not checked; none is
+// recovered by an exhaustive search yet.
 // Widths: |E|, |D| < 2^53 (tree/exact_traverse.h: kEyeBits), coefficients below 2^83 (normals)
 // and 2^125 (offsets), so S(E) and A . D are below 2^138 and their cross products below 2^277:
 // WideInt<5> (320 bits) holds every value exactly.

@@ -94,7 +94,10 @@ json shape(const char* prefix, const Tree& tree) {
 
 json order_counts(const char* prefix, const ValidationReport& r) {
   const std::string p = prefix;
-  return {{p + "_violations", r.violations}, {p + "_ties", r.ties()}, {p + "_pairs_checked", r.pairs_checked}};
+  return {{p + "_violations", r.violations},
+          {p + "_ties", r.ties()},
+          {p + "_hit_pairs", r.hit_pairs},
+          {p + "_pairs_checked", r.pairs_checked}};
 }
 
 }  // namespace
