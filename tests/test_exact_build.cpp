@@ -111,6 +111,7 @@ TEST(ExactInvariants, CatchSwappedChildrenAndAFragmentOffItsNodesPlane) {
   std::size_t other = 1;
   while (canonical(good.fragments[other].support) == root || canonical(-good.fragments[other].support) == root) ++other;
   ASSERT_EQ(good.tree.fragments_of(0).begin, 0u);
+  ASSERT_GT(good.tree.fragments_of(0).size(), 0u);  // crystal's root plane is a fragment's
   moved.fragments[0] = good.fragments[other];
   const ExactInvariantReport r = check_exact_invariants(moved);
   ASSERT_EQ(r.violations, 1u);
@@ -281,4 +282,22 @@ TEST(ExactFragments, CountSidesEqualsClassifyingEachPair) {
     }
   }
   EXPECT_GT(frags.counters().boxes, 1000u);  // the box pass decided most pairs
+}
+
+// Broken structures are reported without walking them: a child pointing back at the root (a cycle),
+// an internal node without a plane, a plane index past the pool.
+TEST(ExactInvariants, BrokenStructuresAreReportedNotWalked) {
+  const Scene s = make_scene("random-triangles", {{"n", "60"}});
+  const ExactTree good = build_exact(s.polygons, "crystal");
+  std::uint32_t node = 0;
+  while (good.tree.nodes[node].front == kNull) ++node;
+  ExactTree cycle = good;
+  cycle.tree.nodes[cycle.tree.nodes[node].front].front = 0;
+  EXPECT_FALSE(check_exact_invariants(cycle).ok());
+  ExactTree planeless = good;
+  planeless.tree.nodes[node].plane = kNull;
+  EXPECT_FALSE(check_exact_invariants(planeless).ok());
+  ExactTree beyond = good;
+  beyond.tree.nodes[node].plane = static_cast<std::uint32_t>(2 * good.planes.size() + 4);
+  EXPECT_FALSE(check_exact_invariants(beyond).ok());
 }

@@ -26,7 +26,9 @@ Plane scene_plane(const GridPlane& p, const Grid& grid) {
 namespace {
 
 // The 64-bit halves of the coefficients mixed by multiplication (odd constants) and a final
-// xor-shift; the top bits pick the slot, so they see every half.
+// xor-shift; the slot is the low bits of the result, which depend only on each half's bits below
+// 31 + log2(slots). Planes that differ only above those bits of a half share a probe sequence:
+// lookups get slower, never wrong (equality decides).
 std::uint64_t plane_hash(const GridPlane& p) {
   std::uint64_t h = 0;
   for (Int128 v : {p.a, p.b, p.c, p.d}) {

@@ -26,8 +26,10 @@ constexpr BoundingSphere kNoSphere{{0, 0, 0}, std::numeric_limits<double>::infin
 }  // namespace
 
 // Each vertex from its cofactors (x = C_0 / C_3 and so on, in grid units) where C~_3 exceeds twice
-// its error bound (filter_box's condition: the quotient is then within a few grid steps' worth of
-// rounding); else from its three planes (vertex_position), since a C~_3 that small can be far off.
+// its error bound (filter_box's condition), else from its three planes (vertex_position). The
+// condition keeps the quotient finite and of the right sign, not accurate: near it the error bound
+// (e_abc + |x| e_d) / (C~_3 - e_d) can reach the coordinate's size. The copy only steers splitters'
+// estimates (halving's points, naylor's measures); no side is decided on it.
 void ExactFragments::rounded_polygon(PlaneRef support, std::uint32_t first, std::uint32_t count, std::uint32_t source,
                                      Polygon& out) const {
   const Grid& grid = planes_.grid();

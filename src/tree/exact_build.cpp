@@ -189,7 +189,8 @@ void freeze_exact(std::vector<BuiltNode>& built, ExactFragments& frags, ExactTre
 }
 
 // The view's fragments: each vertex computed from its three planes (vertex_position), the one
-// place the exact kernel makes scene coordinates.
+// place the exact kernel makes output coordinates (splitters' rounded copies are estimates:
+// split/exact_fragments.h).
 void make_view(ExactTree& out) {
   out.tree.fragments.reserve(out.fragments.size(), 4 * out.fragments.size());
   Polygon poly;

@@ -12,7 +12,10 @@ class Checker {
 
   ExactInvariantReport run() {
     const Tree& tree = t_.tree;
-    if (tree.fragments.size() != t_.fragments.size()) fail("view and plane polygons differ in number");
+    if (tree.fragments.size() != t_.fragments.size() || tree.fragment_plane.size() != t_.fragments.size()) {
+      fail("view, fragment planes and plane polygons differ in number");
+      return std::move(report_);  // fragments_of() ranges would run past the plane polygons
+    }
     check_conservation();
     if (tree.empty()) return std::move(report_);
     // A tree whose structure is broken cannot be walked safely: stop at its first structural fault.
@@ -61,6 +64,14 @@ class Checker {
       return false;
     }
     const auto fragments = static_cast<std::uint32_t>(t_.fragments.size());
+    const std::size_t planes = 2 * t_.planes.size();
+    for (std::uint32_t n = 0; n < nodes.size(); ++n) {
+      const bool internal = nodes[n].front != kNull || nodes[n].back != kNull;
+      if ((internal && nodes[n].plane == kNull) || (nodes[n].plane != kNull && nodes[n].plane >= planes))
+        fail("node " + std::to_string(n) + " has no plane or one past the pool");
+    }
+    for (std::uint32_t f = 0; f < fragments; ++f)
+      if (t_.tree.fragment_plane[f] >= planes) fail("fragment " + std::to_string(f) + "'s plane is past the pool");
     if (nodes[0].first != 0) fail("the root's fragments do not start at 0");
     for (std::uint32_t n = 0; n < nodes.size(); ++n)
       if (nodes[n].first > fragments || (n + 1 < nodes.size() && nodes[n].first > nodes[n + 1].first))
