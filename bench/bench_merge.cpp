@@ -12,6 +12,13 @@
 //       volume_difference: |IN cells' volume - corefinement's| / corefinement's;
 //       result_nodes, result_depth (after reduce), nodes_before_reduce; partition_nodes,
 //       shp_splits (merge cost); operand_nodes (both operands).
+//   merge_kernel/OP/PAIR/n:N/HEURISTIC   the float and the exact kernel on the same operands in one
+//       iteration (solid_build.h against exact_solid_tree.h, merge.h against exact_merge.h); one
+//       thread; counters, the medians of the iterations: float_build_seconds, exact_build_seconds
+//       (the strict build plus labels and sub-hyperplanes, each kernel's), exact_labels_seconds (the
+//       sub-hyperplanes' part of it), float_merge_seconds, exact_merge_seconds (merge and reduce),
+//       exact_merge_vs_float and exact_build_vs_float, the ratios of those medians; result_nodes of
+//       each kernel.
 // PAIR is sphere (the second sphere 0.9 the radius, its centre half a radius away; n triangles
 // each) or a CGAL sample mesh with a copy of itself moved by 5% of its box (mesh:NAME), when the
 // mesh cache has it.
@@ -32,6 +39,7 @@
 #include "mesh_scenes.h"
 #include "metrics/statistics.h"
 #include "solid/cells.h"
+#include "solid/exact_merge.h"
 #include "solid/solid_build.h"
 #include "split/registry.h"
 #include "validate/exact_solid.h"
@@ -161,6 +169,38 @@ void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp o
   }
 }
 
+void bm_kernel_merge(benchmark::State& state, const Operands* o, std::string h, SetOp op) {
+  std::vector<double> float_builds, float_merges, exact_builds, exact_labels, exact_merges;
+  MergeStats float_stats, exact_stats;
+  for (auto _ : state) {
+    auto splitter = make_splitter(h, {}, kSeed);
+    auto start = Clock::now();
+    const SolidBuild fa = build_solid(o->a, *splitter, o->box), fb = build_solid(o->b, *splitter, o->box);
+    float_builds.push_back(seconds_since(start));
+    merge(fa.solid, fb.solid, op, &float_stats);
+    float_merges.push_back(float_stats.merge_seconds + float_stats.reduce_seconds);
+    const auto space = ExactSolidSpace::for_box(o->box);
+    start = Clock::now();
+    const ExactSolidBuild ea = build_exact_solid(o->a, *splitter, *space), eb = build_exact_solid(o->b, *splitter, *space);
+    exact_builds.push_back(seconds_since(start));
+    exact_labels.push_back(ea.label_seconds + eb.label_seconds);
+    merge(ea.solid, eb.solid, *space, op, &exact_stats);
+    exact_merges.push_back(exact_stats.merge_seconds + exact_stats.reduce_seconds);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(o->a.size() + o->b.size()));
+  const double fbuild = median(float_builds), fmerge = median(float_merges);
+  const double ebuild = median(exact_builds), emerge = median(exact_merges);
+  state.counters["float_build_seconds"] = fbuild;
+  state.counters["exact_build_seconds"] = ebuild;
+  state.counters["exact_labels_seconds"] = median(exact_labels);
+  state.counters["float_merge_seconds"] = fmerge;
+  state.counters["exact_merge_seconds"] = emerge;
+  state.counters["exact_build_vs_float"] = ebuild / fbuild;
+  state.counters["exact_merge_vs_float"] = emerge / fmerge;
+  state.counters["float_result_nodes"] = static_cast<double>(float_stats.after.nodes);
+  state.counters["exact_result_nodes"] = static_cast<double>(exact_stats.after.nodes);
+}
+
 bool runs_at(const std::string& h, std::uint64_t n) {
   if (n >= kLargeN) return h == "halving";
   return h != "naylor" || n <= kNaylorMaxN;
@@ -171,6 +211,10 @@ void register_one(const std::string& pair, std::uint64_t n, const Operands* o, c
   auto* b = benchmark::RegisterBenchmark(name.c_str(), bm_merge, o, h, op);
   b->Unit(benchmark::kMillisecond)->UseRealTime();
   if (n >= 10000) b->Iterations(kSlowRuns);
+  const std::string kernel_name = "merge_kernel" + name.substr(name.find('/'));
+  auto* k = benchmark::RegisterBenchmark(kernel_name.c_str(), bm_kernel_merge, o, h, op);
+  k->Unit(benchmark::kMillisecond)->UseRealTime();
+  if (n >= 10000) k->Iterations(kSlowRuns);
 }
 
 void register_all(const Selection& sel) {

@@ -31,8 +31,10 @@ std::vector<std::pair<PlanePolygon, std::vector<GridPoint>>> fan(const std::vect
 
 }  // namespace
 
-SnappedScene snap_polygons(std::span<const Polygon> input) {
-  SnappedScene out{grid_of(input), {}, {}, {}};
+SnappedScene snap_polygons(std::span<const Polygon> input) { return snap_polygons(input, grid_of(input)); }
+
+SnappedScene snap_polygons(std::span<const Polygon> input, const Grid& grid) {
+  SnappedScene out{grid, {}, {}, {}};
   SnapReport& r = out.report;
   std::vector<GridPoint> points, vertices;
   for (std::size_t i = 0; i < input.size(); ++i) {
@@ -44,7 +46,10 @@ SnappedScene snap_polygons(std::span<const Polygon> input) {
     ++r.polygons;
     points.clear();
     for (const Vertex& v : poly.verts) {
-      const GridPoint q = *out.grid.snap(v.p);  // every point of the box is in the grid's range
+      if (!is_finite(v.p)) throw std::domain_error("a vertex has a non-finite coordinate");
+      const auto snapped = out.grid.snap(v.p);
+      if (!snapped) throw std::domain_error("a vertex lies beyond the grid's range");
+      const GridPoint q = *snapped;
       r.vertices.add(length(out.grid.point(q) - v.p));
       points.push_back(q);
     }

@@ -50,5 +50,8 @@ struct SnappedScene {
 // The grid of the input's bounding box and the input on it. Throws std::domain_error for a
 // non-finite coordinate (the mesh readers refuse those first).
 SnappedScene snap_polygons(std::span<const Polygon> input);
+// The input on a given grid (operands merged together must share one): throws std::domain_error for
+// a non-finite coordinate or one beyond the grid's range.
+SnappedScene snap_polygons(std::span<const Polygon> input, const Grid& grid);
 
 }  // namespace bsp

@@ -122,23 +122,7 @@ PointClass classify_point(const SolidTree& solid, const Vec3& p) {
   return in && out ? PointClass::On : (in ? PointClass::In : PointClass::Out);
 }
 
-SolidSize solid_size(const SolidTree& solid) {
-  SolidSize size;
-  std::vector<std::pair<Ref, std::uint64_t>> stack{{solid.root, 0}};
-  while (!stack.empty()) {
-    const auto [r, depth] = stack.back();
-    stack.pop_back();
-    size.depth = std::max(size.depth, depth);
-    if (is_leaf(r)) {
-      ++(r == kIn ? size.in_leaves : size.out_leaves);
-      continue;
-    }
-    ++size.nodes;
-    stack.push_back({solid.nodes[r].back, depth + 1});
-    stack.push_back({solid.nodes[r].front, depth + 1});
-  }
-  return size;
-}
+SolidSize solid_size(const SolidTree& solid) { return solid_size_of(solid.nodes, solid.root); }
 
 SolidTree complemented(SolidTree solid) {
   for (SolidNode& n : solid.nodes) {

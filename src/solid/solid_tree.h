@@ -12,6 +12,7 @@
 // box (it survives only as a tolerance artefact of merging, and reduce() removes it).
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "geometry/convex_loop.h"
@@ -75,6 +76,25 @@ struct SolidSize {
   std::uint64_t depth = 0;       // nodes on the longest root-to-leaf path (a lone leaf: 0)
 };
 SolidSize solid_size(const SolidTree& solid);
+// The same for any node array whose nodes have front and back Refs (the exact kernel's too).
+template <class Nodes>
+SolidSize solid_size_of(const Nodes& nodes, Ref root) {
+  SolidSize size;
+  std::vector<std::pair<Ref, std::uint64_t>> stack{{root, 0}};
+  while (!stack.empty()) {
+    const auto [r, depth] = stack.back();
+    stack.pop_back();
+    size.depth = depth > size.depth ? depth : size.depth;
+    if (is_leaf(r)) {
+      ++(r == kIn ? size.in_leaves : size.out_leaves);
+      continue;
+    }
+    ++size.nodes;
+    stack.push_back({nodes[r].back, depth + 1});
+    stack.push_back({nodes[r].front, depth + 1});
+  }
+  return size;
+}
 
 // The same tree with every leaf label flipped (the complement of the solid).
 SolidTree complemented(SolidTree solid);

@@ -139,6 +139,34 @@ std::uint32_t ExactFragments::add(const PlanePolygon& poly, std::span<const Grid
   return store(support, planes_.add(poly.support), poly.source, first, k);
 }
 
+std::uint32_t ExactFragments::add_pooled(std::uint32_t support, std::span<const std::uint32_t> bounds,
+                                        std::uint32_t source) {
+  if (support >= kPooled || planes_.size() > kPooled) throw std::length_error("more than 2^31 pooled planes");
+  const auto k = static_cast<std::uint32_t>(bounds.size());
+  const std::uint32_t first = new_span(k);
+  const PlaneRef s = kPooled | support;
+  for (std::uint32_t i = 0; i < k; ++i) bound_[first + i] = kPooled | bounds[i];
+  for (std::uint32_t i = 0; i < k; ++i) {
+    const PlaneRef before = bound_[first + i], after = bound_[first + (i + 1) % k];
+    const auto c = vertex_cofactors(plane_of(s), plane_of(before), plane_of(after), approx_of(s), approx_of(before),
+                                    approx_of(after), counters_.predicates);
+    if (!c) throw std::invalid_argument("a plane polygon's vertex is not defined");
+    cof_[first + i] = *c;
+    corner_[first + i] = kNoCorner;
+  }
+  return store(s, support, source, first, k);
+}
+
+void ExactFragments::pooled_bounds(std::uint32_t id, std::vector<std::uint32_t>& out) const {
+  const Record& r = rec_[id];
+  out.clear();
+  for (std::uint32_t i = 0; i < r.count; ++i) {
+    const PlaneRef b = bound_[r.first + i];
+    if (!(b & kPooled)) throw std::logic_error("pooled_bounds of a fragment with an input plane");
+    out.push_back(b & ~kPooled);
+  }
+}
+
 void ExactFragments::release(std::uint32_t id) {
   rounded_.release(id);
   free_span(rec_[id].first, rec_[id].count);
@@ -429,7 +457,7 @@ PlanePolygon ExactFragments::take(std::uint32_t id) {
 
 // The parent's slots are freed only after both parts are written, so neither part's run can be the
 // one it copies from; its id goes first, as FragmentStore::split releases before adding.
-ExactFragments::Parts ExactFragments::split(std::uint32_t id, std::uint32_t plane) {
+ExactFragments::Parts ExactFragments::split(std::uint32_t id, std::uint32_t plane, bool keep_parent) {
   // A spanning fragment is neither coplanar nor decided by its box: only its vertices are tested.
   sides_.resize(rec_[id].count);
   if (PlanePool::coplanar(plane, rec_[id].support) ||
@@ -440,13 +468,13 @@ ExactFragments::Parts ExactFragments::split(std::uint32_t id, std::uint32_t plan
   const PlaneRef support = support_[id];
   const std::uint32_t pooled = rec_[id].support, source = rec_[id].source;
   const std::uint32_t from = rec_[id].first, k = rec_[id].count;
-  rounded_.release(id);
+  if (!keep_parent) rounded_.release(id);
   Parts parts;
   kept_edges(sides_, 1, kept_);
   parts.front = add_part(support, pooled, source, from, cut);
   kept_edges(sides_, -1, kept_);
   parts.back = add_part(support, pooled, source, from, opposite);
-  free_span(from, k);
+  if (!keep_parent) free_span(from, k);
   return parts;
 }
 

@@ -53,6 +53,9 @@ class ExactFragments {
   // Pools the polygon's support; `corners` says which of its vertices are grid points (input
   // corners), given in vertex order, or is empty when none is known.
   std::uint32_t add(const PlanePolygon& poly, std::span<const GridPoint> corners = {});
+  // The polygon on pooled plane `support` bounded by pooled planes `bounds` (counter-clockwise,
+  // each vertex defined): what solid trees make from planes alone. Refers to the pool, copies no plane.
+  std::uint32_t add_pooled(std::uint32_t support, std::span<const std::uint32_t> bounds, std::uint32_t source = 0);
   void release(std::uint32_t id);
   // The fragment's plane polygon; take() releases the fragment.
   PlanePolygon polygon(std::uint32_t id) const;
@@ -67,12 +70,15 @@ class ExactFragments {
   // Counts of ids on each side of each plane, added to out[j] for planes[j] (SideCounts).
   void count_sides(std::span<const std::uint32_t> ids, std::span<const std::uint32_t> planes,
                    std::span<SideCounts> out) const;
-  // Splits a fragment classified Spanning by pooled plane `plane` and releases it; the parts keep
-  // its support and source. Both parts exist (nothing is a sliver in the exact kernel).
+  // Splits a fragment classified Spanning by pooled plane `plane` and releases it (unless
+  // keep_parent: a solid tree's sub-hyperplane stays its node's when merging cuts a copy); the parts
+  // keep its support and source. Both parts exist (nothing is a sliver in the exact kernel).
   struct Parts {
     std::uint32_t front = FragmentStore::kNone, back = FragmentStore::kNone;
   };
-  Parts split(std::uint32_t id, std::uint32_t plane);
+  Parts split(std::uint32_t id, std::uint32_t plane, bool keep_parent = false);
+  // The pooled bound planes of a fragment whose bounds are all pooled (add_pooled and its splits).
+  void pooled_bounds(std::uint32_t id, std::vector<std::uint32_t>& out) const;
 
   const ExactSideCounters& counters() const { return counters_; }
 

@@ -36,8 +36,9 @@ struct SideCounts {
 class FragmentStore {
  public:
   static constexpr std::uint32_t kNone = 0xffffffffu;  // no fragment (a part split() dropped)
-  // Freed spans of more vertices than this are not reused: fragments that large are rare.
-  static constexpr std::uint32_t kReusedSpan = 16;
+  // Freed spans of more vertices than this are not reused: fragments that large are rare (a solid
+  // tree's sub-hyperplanes, clipped by every ancestor, reach dozens of vertices).
+  static constexpr std::uint32_t kReusedSpan = 256;
   // A store made for a known set of fragments reserves room for this many times as many (splits
   // add fragments): reserved pages cost nothing until written, and a store that has to grow
   // copies everything it holds.

@@ -212,11 +212,12 @@ std::optional<Kernel> kernel_named(std::string_view name) {
   return std::nullopt;
 }
 
-ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options) {
+ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options,
+                           const Grid* grid) {
   if (options.incremental || options.shape == Shape::Leafy)
     throw std::invalid_argument("the exact kernel builds strict and coarse trees recursively");
   const auto start = Clock::now();
-  SnappedScene snapped = snap_polygons(input);
+  SnappedScene snapped = grid ? snap_polygons(input, *grid) : snap_polygons(input);
   const double snap_seconds = seconds_since(start);
   ExactTree out;
   out.exact.snap_seconds = snap_seconds;

@@ -66,7 +66,9 @@ struct ExactTree {
 };
 
 // Throws std::invalid_argument for an incremental or leafy build, which the exact kernel does not
-// make, and std::domain_error for a non-finite coordinate.
-ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options = {});
+// make, and std::domain_error for a non-finite coordinate. The input is snapped to `grid` when given
+// (operands to be merged share one), else to the grid of its own box.
+ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, const BuildOptions& options = {},
+                           const Grid* grid = nullptr);
 
 }  // namespace bsp

@@ -1,0 +1,324 @@
+#include "solid/exact_merge.h"
+
+#include <algorithm>
+#include <chrono>
+#include <string>
+#include <stdexcept>
+#include <vector>
+
+namespace bsp {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr std::uint32_t kNone = FragmentStore::kNone;
+
+[[noreturn]] void broken(const char* what) {
+  throw std::logic_error(std::string("exact merge: ") + what + " (a broken invariant of exact solid trees)");
+}
+
+// Both operands in one node array: A's nodes keep their indices, B's follow; sub-hyperplanes are
+// shared by id.
+ExactSolidTree combined(const ExactSolidTree& a, const ExactSolidTree& b, Ref& b_root) {
+  ExactSolidTree w = a;
+  const Ref offset = static_cast<Ref>(a.nodes.size());
+  for (std::size_t i = 0; i < b.nodes.size(); ++i) {
+    ExactSolidNode n = b.nodes[i];
+    if (!is_leaf(n.front)) n.front += offset;
+    if (!is_leaf(n.back)) n.back += offset;
+    w.add_node(n.plane, b.shp[i], n.front, n.back);
+  }
+  b_root = is_leaf(b.root) ? b.root : b.root + offset;
+  return w;
+}
+
+// partitionTree (§4.1) as merge.h's Partitioner, exact. The pieces of shp(t1) made while
+// descending are only looked at, and released as soon as they are; the parts of shp(T) become
+// nodes' sub-hyperplanes, and are listed in `made`.
+class ExactPartitioner {
+ public:
+  ExactPartitioner(ExactSolidTree& work, ExactSolidSpace& space, MergeStats& stats, std::vector<std::uint32_t>& made)
+      : w_(work), store_(space.shps()), stats_(stats), made_(made) {}
+
+  struct Parts {
+    Ref plus, minus;
+  };
+  Parts partition(Ref t, std::uint32_t shp_h, std::uint32_t h) {
+    ++stats_.partition_calls;
+    frames_.assign(1, {t, shp_h, false, Kind::Pending});
+    parts_.clear();
+    while (!frames_.empty()) {
+      const std::size_t top = frames_.size() - 1;
+      if (frames_[top].kind == Kind::Pending) {
+        descend(top, h);
+        continue;
+      }
+      const Frame f = frames_[top];
+      frames_.pop_back();
+      parts_.push_back(combine(f, h));
+    }
+    return parts_.back();
+  }
+
+ private:
+  enum class Kind : std::uint8_t { Pending, InFront, InBack, InBoth };
+  struct Frame {
+    Ref t;
+    std::uint32_t shp_h;  // shp(t1) inside r(T)
+    bool owned;           // a piece made here, released when done with
+    Kind kind;
+  };
+
+  void done_with(const Frame& f) {
+    if (f.owned) store_.release(f.shp_h);
+  }
+
+  void descend(std::size_t top, std::uint32_t h) {
+    Frame& f = frames_[top];
+    if (is_leaf(f.t)) {
+      done_with(f);
+      parts_.push_back({f.t, f.t});
+      frames_.pop_back();
+      return;
+    }
+    ++stats_.partition_nodes;
+    const ExactSolidNode node = w_.nodes[f.t];
+    if (PlanePool::coplanar(node.plane, h)) {  // h(t1) = h(T): T's sides are h(t1)'s
+      done_with(f);
+      parts_.push_back(node.plane == h ? Parts{node.front, node.back} : Parts{node.back, node.front});
+      frames_.pop_back();
+      return;
+    }
+    const Frame child{0, f.shp_h, f.owned, Kind::Pending};
+    f.owned = false;  // handed down with the piece
+    switch (store_.classify(f.shp_h, node.plane)) {
+      case Side::Front:
+        f.kind = Kind::InFront;
+        frames_.push_back({node.front, child.shp_h, child.owned, Kind::Pending});
+        return;
+      case Side::Back:
+        f.kind = Kind::InBack;
+        frames_.push_back({node.back, child.shp_h, child.owned, Kind::Pending});
+        return;
+      case Side::Coplanar: broken("a piece of shp(t1) lies in another plane");
+      case Side::Spanning: {
+        const ExactFragments::Parts p = store_.split(f.shp_h, node.plane, !child.owned);
+        ++stats_.shp_splits;
+        f.kind = Kind::InBoth;
+        frames_.push_back({node.back, p.back, true, Kind::Pending});
+        frames_.push_back({node.front, p.front, true, Kind::Pending});
+        return;
+      }
+    }
+  }
+
+  Ref node(std::uint32_t plane, std::uint32_t shp, Ref front, Ref back) { return w_.add_node(plane, shp, front, back); }
+
+  Parts combine(const Frame& f, std::uint32_t h) {
+    const ExactSolidNode n = w_.nodes[f.t];
+    const std::uint32_t shp_t = w_.shp[f.t];
+    const Side s = store_.classify(shp_t, h);
+    if (f.kind == Kind::InBoth) {
+      const Parts back = parts_.back();
+      parts_.pop_back();
+      const Parts front = parts_.back();
+      parts_.pop_back();
+      if (s != Side::Spanning) broken("shp(t1) spans h(T) but shp(T) does not span h(t1)");
+      const ExactFragments::Parts p = store_.split(shp_t, h, true);
+      ++stats_.shp_splits;
+      made_.push_back(p.front);
+      made_.push_back(p.back);
+      return {node(n.plane, p.front, front.plus, back.plus), node(n.plane, p.back, front.minus, back.minus)};
+    }
+    // shp(t1) lies in one subtree X of T; the other, Y, lies wholly on the side of h(t1) that shp(T)
+    // is on (Figure 7), and T keeps its node, with shp(T) whole, on that side only.
+    const Parts x = parts_.back();
+    parts_.pop_back();
+    if (s != Side::Front && s != Side::Back) broken("shp(t1) lies on one side of h(T) but shp(T) crosses h(t1)");
+    const bool x_is_front = f.kind == Kind::InFront;
+    const Ref y = x_is_front ? n.back : n.front;
+    const auto with_y = [&](Ref x_part) {
+      return x_is_front ? node(n.plane, shp_t, x_part, y) : node(n.plane, shp_t, y, x_part);
+    };
+    if (s == Side::Front) return {with_y(x.plus), x.minus};
+    return {x.plus, with_y(x.minus)};
+  }
+
+  ExactSolidTree& w_;
+  ExactFragments& store_;
+  MergeStats& stats_;
+  std::vector<std::uint32_t>& made_;
+  std::vector<Frame> frames_;
+  std::vector<Parts> parts_;
+};
+
+class ExactMerger {
+ public:
+  ExactMerger(ExactSolidTree& work, ExactSolidSpace& space, const CellTable& table, MergeStats& stats,
+              std::vector<std::uint32_t>& made)
+      : w_(work), table_(table), stats_(stats), partitioner_(work, space, stats, made) {}
+
+  Ref merge(Ref a_root, Ref b_root) {
+    struct Frame {
+      Ref a, b;
+      bool combining;
+    };
+    std::vector<Frame> frames{{a_root, b_root, false}};
+    std::vector<Ref> results;
+    while (!frames.empty()) {
+      const Frame f = frames.back();
+      if (!f.combining) {
+        if (is_leaf(f.a) || is_leaf(f.b)) {
+          results.push_back(cell_op(f.a, f.b));
+          frames.pop_back();
+          continue;
+        }
+        ++stats_.merge_nodes;
+        const ExactSolidNode na = w_.nodes[f.a];
+        const ExactPartitioner::Parts p = partitioner_.partition(f.b, w_.shp[f.a], na.plane);
+        frames.back().combining = true;
+        frames.push_back({na.back, p.minus, false});
+        frames.push_back({na.front, p.plus, false});
+        continue;
+      }
+      const Ref back = results.back();
+      results.pop_back();
+      const Ref front = results.back();
+      results.pop_back();
+      results.push_back(w_.add_node(w_.nodes[f.a].plane, w_.shp[f.a], front, back));
+      frames.pop_back();
+    }
+    return results.back();
+  }
+
+ private:
+  Ref cell_op(Ref a, Ref b) {
+    ++stats_.cell_ops;
+    const bool a_is_cell = is_leaf(a);
+    const CellResult r = a_is_cell ? table_.first_leaf[a == kIn] : table_.second_leaf[b == kIn];
+    const Ref tree = a_is_cell ? b : a;
+    switch (r) {
+      case CellResult::Out: return kOut;
+      case CellResult::In: return kIn;
+      case CellResult::Tree: return tree;
+      case CellResult::Complement: return complement(tree);
+    }
+    return kOut;
+  }
+
+  // A copy of the subtree with its leaves flipped; the copies share the original's sub-hyperplanes.
+  Ref complement(Ref t) {
+    if (is_leaf(t)) return flip_label(t);
+    const auto copy = [&](Ref from) {
+      ++stats_.complement_nodes;
+      const ExactSolidNode n = w_.nodes[from];
+      return w_.add_node(n.plane, w_.shp[from], n.front, n.back);
+    };
+    const Ref root = copy(t);
+    std::vector<Ref> stack{root};
+    while (!stack.empty()) {
+      const Ref v = stack.back();
+      stack.pop_back();
+      for (const bool front : {true, false}) {
+        const Ref c = w_.nodes[v].child(front);
+        const Ref replaced = is_leaf(c) ? flip_label(c) : copy(c);
+        (front ? w_.nodes[v].front : w_.nodes[v].back) = replaced;
+        if (!is_leaf(c)) stack.push_back(replaced);
+      }
+    }
+    return root;
+  }
+
+  ExactSolidTree& w_;
+  const CellTable& table_;
+  MergeStats& stats_;
+  ExactPartitioner partitioner_;
+};
+
+}  // namespace
+
+ExactSolidTree reduce(const ExactSolidTree& solid) {
+  // 1. Each reachable node's replacement: a leaf when both its children's are that leaf. A node
+  // may be reached from several parents (partitioning shares unchanged subtrees), so each is
+  // resolved once, children before parents.
+  constexpr Ref kUnresolved = 0x7fffffff;
+  std::vector<Ref> to(solid.nodes.size(), kUnresolved);
+  const auto resolved = [&](Ref r) { return is_leaf(r) ? r : to[r]; };
+  std::vector<Ref> stack;
+  if (!is_leaf(solid.root)) stack.push_back(solid.root);
+  while (!stack.empty()) {
+    const Ref r = stack.back();
+    if (to[r] != kUnresolved) {
+      stack.pop_back();
+      continue;
+    }
+    const ExactSolidNode& n = solid.nodes[r];
+    const Ref f = resolved(n.front), b = resolved(n.back);
+    if (f == kUnresolved || b == kUnresolved) {
+      if (f == kUnresolved) stack.push_back(n.front);
+      if (b == kUnresolved) stack.push_back(n.back);
+      continue;
+    }
+    to[r] = is_leaf(f) && f == b ? f : r;
+    stack.pop_back();
+  }
+  // 2. The nodes that remain, in pre-order.
+  ExactSolidTree out;
+  struct Item {
+    Ref from;
+    Ref parent;  // in out; -1 for the root
+    bool front;
+  };
+  std::vector<Item> items{{solid.root, -1, true}};
+  while (!items.empty()) {
+    const Item item = items.back();
+    items.pop_back();
+    Ref placed = resolved(item.from);
+    if (!is_leaf(placed)) {
+      const ExactSolidNode& n = solid.nodes[placed];
+      placed = out.add_node(n.plane, solid.shp[item.from], kOut, kOut);
+      items.push_back({n.back, placed, false});
+      items.push_back({n.front, placed, true});
+    }
+    if (item.parent < 0)
+      out.root = placed;
+    else
+      (item.front ? out.nodes[item.parent].front : out.nodes[item.parent].back) = placed;
+  }
+  return out;
+}
+
+ExactSolidTree merge_with_table(const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space,
+                                const CellTable& table, MergeStats* stats) {
+  MergeStats local;
+  MergeStats& st = stats ? *stats : local;
+  st = {};
+  const auto start = Clock::now();
+  Ref b_root = kOut;
+  ExactSolidTree work = combined(a, b, b_root);
+  std::vector<std::uint32_t> made;
+  work.root = ExactMerger(work, space, table, st, made).merge(a.root, b_root);
+  st.merge_seconds = seconds_since(start);
+  st.before = solid_size(work);
+  const auto reduce_start = Clock::now();
+  ExactSolidTree result = reduce(work);
+  std::uint32_t ids = 0;
+  for (const std::uint32_t id : made) ids = std::max(ids, id + 1);
+  std::vector<bool> used(ids, false);
+  for (const std::uint32_t id : result.shp)
+    if (id < ids) used[id] = true;
+  for (const std::uint32_t id : made)
+    if (!used[id]) space.shps().release(id);
+  st.reduce_seconds = seconds_since(reduce_start);
+  st.after = solid_size(result);
+  return result;
+}
+
+ExactSolidTree merge(const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space, SetOp op,
+                     MergeStats* stats) {
+  return merge_with_table(a, b, space, cell_table(op), stats);
+}
+
+}  // namespace bsp

@@ -1,0 +1,233 @@
+// Exact solid trees and exact merging, proved at grid points against CGAL's exact side-of-mesh
+// predicates on the same snapped operands (in grid coordinates, which doubles hold exactly). Each
+// test names the degeneracy or the planted error it covers.
+#include <gtest/gtest.h>
+
+#include <pthread.h>
+
+#include <string>
+#include <vector>
+
+#include "catalog.h"
+#include "common/rng.h"
+#include "geometry/snap.h"
+#include "solid/exact_merge.h"
+#include "solid/exact_solid_tree.h"
+#include "split/registry.h"
+#include "validate/exact_solid.h"
+
+namespace bsp {
+namespace {
+
+const SetOp kOps[] = {SetOp::Union, SetOp::Intersection, SetOp::Difference, SetOp::SymmetricDifference};
+
+std::vector<Polygon> scene(const std::string& name, const ParamAssignments& params) {
+  return make_scene(name, params).polygons;
+}
+
+Box bounds(const std::vector<Polygon>& polys) {
+  Box b;
+  for (const auto& p : polys)
+    for (const auto& v : p.verts) b.add(v.p);
+  return b;
+}
+
+// The operand as CGAL sees it: the snapped polygons' corners in grid coordinates.
+std::vector<Polygon> in_grid_units(const std::vector<Polygon>& polys, const Grid& grid) {
+  const SnappedScene s = snap_polygons(polys, grid);
+  std::vector<Polygon> out;
+  for (const auto& corners : s.corners) {
+    Polygon p;
+    for (const GridPoint& q : corners)
+      p.verts.push_back({{static_cast<double>(q.x), static_cast<double>(q.y), static_cast<double>(q.z)}});
+    out.push_back(p);
+  }
+  return out;
+}
+
+struct ExactPair {
+  std::vector<Polygon> a, b;
+  std::unique_ptr<ExactSolidSpace> space;
+  std::vector<Polygon> ga, gb;  // in grid units
+
+  ExactPair(std::vector<Polygon> pa, std::vector<Polygon> pb)
+      : a(std::move(pa)), b(std::move(pb)), space(ExactSolidSpace::for_box(solid_box(bounds(a), bounds(b)))) {
+    ga = in_grid_units(a, space->grid());
+    gb = in_grid_units(b, space->grid());
+  }
+  ExactSolidTree solid(const std::vector<Polygon>& polys, const std::string& heuristic) {
+    auto splitter = make_splitter(heuristic, {}, 1);
+    return build_exact_solid(polys, *splitter, *space).solid;
+  }
+};
+
+bool combine(SetOp op, bool in_a, bool in_b) {
+  switch (op) {
+    case SetOp::Union: return in_a || in_b;
+    case SetOp::Intersection: return in_a && in_b;
+    case SetOp::Difference: return in_a && !in_b;
+    case SetOp::SymmetricDifference: return in_a != in_b;
+  }
+  return false;
+}
+
+struct PointProof {
+  int compared = 0, on_operand = 0, mismatches = 0;
+};
+
+// Grid points uniform in the operands' box: the tree's exact answer against CGAL's.
+PointProof prove_points(const ExactSolidTree& r, const ExactPair& p, SetOp op, int points = 3000) {
+  const ExactSolid ea(p.ga), eb(p.gb);
+  Box box = bounds(p.ga);
+  box.add(bounds(p.gb));
+  Rng rng(11);
+  PointProof proof;
+  for (int i = 0; i < points; ++i) {
+    const GridPoint q{static_cast<std::int64_t>(rng.uniform(box.lo.x, box.hi.x)),
+                      static_cast<std::int64_t>(rng.uniform(box.lo.y, box.hi.y)),
+                      static_cast<std::int64_t>(rng.uniform(box.lo.z, box.hi.z))};
+    const Vec3 x{static_cast<double>(q.x), static_cast<double>(q.y), static_cast<double>(q.z)};
+    const ExactSide sa = ea.side(x), sb = eb.side(x);
+    if (sa == ExactSide::Boundary || sb == ExactSide::Boundary) {
+      ++proof.on_operand;
+      continue;
+    }
+    ++proof.compared;
+    const bool truth = combine(op, sa == ExactSide::Inside, sb == ExactSide::Inside);
+    proof.mismatches += classify_point(r, *p.space, q) != (truth ? PointClass::In : PointClass::Out);
+  }
+  return proof;
+}
+
+TEST(ExactSolidTree, CubeFacesAreOnAndNeighboursAreInOrOut) {
+  ExactPair p(scene("box", {{"seed", "0"}}), scene("box", {{"seed", "0"}}));
+  const ExactSolidTree s = p.solid(p.a, "first");
+  const GridPoint c = *p.space->grid().snap({0, 0, 0}), face = *p.space->grid().snap({1, 0.2, 0.3});
+  EXPECT_EQ(classify_point(s, *p.space, c), PointClass::In);
+  EXPECT_EQ(classify_point(s, *p.space, face), PointClass::On);
+  EXPECT_EQ(classify_point(s, *p.space, {face.x + 1, face.y, face.z}), PointClass::Out);
+  EXPECT_EQ(classify_point(s, *p.space, {face.x - 1, face.y, face.z}), PointClass::In);
+}
+
+TEST(ExactSolidTree, EveryHeuristicBuildsASphereThatClassifiesGridPointsLikeCgal) {
+  ExactPair p(scene("sphere", {{"n", "300"}}), scene("sphere", {{"n", "300"}}));
+  for (const auto& h : heuristics()) {
+    const ExactSolidTree s = p.solid(p.a, h.name);
+    const PointProof proof = prove_points(s, p, SetOp::Intersection);  // A ∩ A = A
+    EXPECT_EQ(proof.mismatches, 0) << h.name;
+    EXPECT_GT(proof.compared, 2900) << h.name;
+  }
+}
+
+TEST(ExactMerge, OverlappingSpheresEveryOperationAndHeuristicMatchCgal) {
+  ExactPair p(scene("sphere", {{"n", "400"}}), scene("sphere", {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}}));
+  for (const std::string h : {"first", "crystal", "halving", "naylor"}) {
+    const ExactSolidTree a = p.solid(p.a, h), b = p.solid(p.b, h);
+    for (SetOp op : kOps) {
+      MergeStats stats;
+      const ExactSolidTree r = merge(a, b, *p.space, op, &stats);
+      const PointProof proof = prove_points(r, p, op);
+      EXPECT_EQ(proof.mismatches, 0) << h << " " << set_op_name(op);
+      EXPECT_GT(proof.compared, 2900) << h << " " << set_op_name(op);
+      EXPECT_EQ(stats.inconsistent, 0u);
+      EXPECT_LE(stats.after.nodes, stats.before.nodes);
+    }
+  }
+}
+
+TEST(ExactMerge, CoplanarFacesOfTouchingBoxes) {
+  // The boxes share the plane x = 0 over a square: partitionTree's coplanar case, both facings,
+  // decided by pooled index.
+  ExactPair p(scene("box", {{"seed", "0"}, {"n", "24"}}), scene("box", {{"seed", "0"}, {"x", "1"}, {"y", "0.5"}}));
+  const ExactSolidTree a = p.solid(p.a, "first"), b = p.solid(p.b, "first");
+  for (SetOp op : kOps) {
+    const ExactSolidTree r = merge(a, b, *p.space, op);
+    EXPECT_EQ(prove_points(r, p, op).mismatches, 0) << set_op_name(op);
+  }
+}
+
+TEST(ExactMerge, IdenticalOperandsEveryPlaneCoplanar) {
+  ExactPair p(scene("menger-sponge", {{"seed", "3"}}), scene("menger-sponge", {{"seed", "3"}}));
+  const ExactSolidTree a = p.solid(p.a, "naylor"), b = p.solid(p.b, "halving");
+  const ExactSolidTree nothing = merge(a, b, *p.space, SetOp::Difference);
+  EXPECT_EQ(nothing.root, kOut) << "A - A must reduce to one OUT leaf";
+  EXPECT_EQ(merge(a, b, *p.space, SetOp::SymmetricDifference).root, kOut);
+  EXPECT_EQ(prove_points(merge(a, b, *p.space, SetOp::Union), p, SetOp::Union).mismatches, 0);
+}
+
+TEST(ExactMerge, SolidWithACavityAgainstATorus) {
+  ExactPair p(scene("hollow-box", {{"seed", "0"}}), scene("torus", {{"n", "800"}, {"seed", "5"}, {"x", "0.4"}}));
+  const ExactSolidTree a = p.solid(p.a, "crystal"), b = p.solid(p.b, "crystal");
+  for (SetOp op : kOps) EXPECT_EQ(prove_points(merge(a, b, *p.space, op), p, op).mismatches, 0) << set_op_name(op);
+}
+
+// Runs f on a thread with a 256 KB stack: a recursive walk of a chain thousands deep overflows it.
+template <class F>
+void on_small_stack(F f) {
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, 256 * 1024);
+  pthread_t thread;
+  ASSERT_EQ(pthread_create(&thread, &attr, [](void* arg) -> void* { (*static_cast<F*>(arg))(); return nullptr; }, &f), 0);
+  pthread_join(thread, nullptr);
+  pthread_attr_destroy(&attr);
+}
+
+TEST(ExactMerge, ChainOperandsDeeperThanASmallStackAllows) {
+  ExactPair p(scene("sphere", {{"n", "4000"}}), scene("sphere", {{"n", "4000"}, {"x", "0.5"}, {"scale", "0.9"}}));
+  ExactSolidTree a, b, r;
+  MergeStats stats;
+  std::vector<PlanePolygon> boundary;
+  on_small_stack([&] {
+    a = p.solid(p.a, "first");
+    b = p.solid(p.b, "first");
+    r = merge(a, b, *p.space, SetOp::Intersection, &stats);
+    boundary = exact_solid_boundary(r, *p.space);
+  });
+  EXPECT_GE(solid_size(a).depth, 1900u);
+  EXPECT_GE(stats.after.depth, 1000u);
+  EXPECT_GT(boundary.size(), 2000u);
+  EXPECT_EQ(prove_points(r, p, SetOp::Intersection, 1000).mismatches, 0);
+}
+
+TEST(ExactMerge, SameInputsGiveTheSameTreeBitForBit) {
+  ExactPair p(scene("torus", {{"n", "600"}}), scene("torus", {{"n", "600"}, {"x", "0.7"}, {"seed", "4"}}));
+  const ExactSolidTree a = p.solid(p.a, "naylor"), b = p.solid(p.b, "naylor");
+  const ExactSolidTree r1 = merge(a, b, *p.space, SetOp::Difference), r2 = merge(a, b, *p.space, SetOp::Difference);
+  ASSERT_EQ(r1.nodes.size(), r2.nodes.size());
+  EXPECT_EQ(r1.root, r2.root);
+  for (std::size_t i = 0; i < r1.nodes.size(); ++i) {
+    EXPECT_EQ(r1.nodes[i].plane, r2.nodes[i].plane);
+    EXPECT_EQ(r1.nodes[i].front, r2.nodes[i].front);
+    EXPECT_EQ(r1.nodes[i].back, r2.nodes[i].back);
+    EXPECT_EQ(p.space->shps().polygon(r1.shp[i]).bounds, p.space->shps().polygon(r2.shp[i]).bounds);
+  }
+}
+
+TEST(ExactMergeCheck, CatchesAFlippedLeafLabel) {
+  ExactPair p(scene("sphere", {{"n", "400"}}), scene("sphere", {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}}));
+  const ExactSolidTree a = p.solid(p.a, "naylor"), b = p.solid(p.b, "naylor");
+  ExactSolidTree r = merge(a, b, *p.space, SetOp::Union);
+  ASSERT_EQ(prove_points(r, p, SetOp::Union).mismatches, 0);
+  // Flip the leaf holding the first sphere's centre: its whole cell changes side.
+  const GridPoint centre = *p.space->grid().snap({0, 0, 0});
+  Ref* link = &r.root;
+  while (!is_leaf(*link)) {
+    ExactSolidNode& n = r.nodes[*link];
+    link = p.space->pool()[n.plane].side(centre) >= 0 ? &n.front : &n.back;
+  }
+  ASSERT_EQ(*link, kIn);
+  *link = kOut;
+  EXPECT_GT(prove_points(r, p, SetOp::Union).mismatches, 0);
+}
+
+TEST(ExactMergeCheck, CatchesAWrongTreeOpCellRow) {
+  ExactPair p(scene("sphere", {{"n", "200"}}), scene("sphere", {{"n", "200"}, {"x", "0.5"}}));
+  const ExactSolidTree a = p.solid(p.a, "crystal"), b = p.solid(p.b, "crystal");
+  CellTable wrong = cell_table(SetOp::Union);
+  wrong.first_leaf[0] = CellResult::Out;  // an OUT cell of A drops what B holds there
+  EXPECT_GT(prove_points(merge_with_table(a, b, *p.space, wrong), p, SetOp::Union).mismatches, 0);
+}
+
+}  // namespace
+}  // namespace bsp
