@@ -1,0 +1,68 @@
+#pragma once
+// Exact measures of the exact kernel's solids, in grid coordinates (geometry/grid.h: units are grid
+// steps, so no rounding of scene coordinates enters): whether a set of faces closes, the volume it
+// encloses, and CGAL's corefinement of two meshes measured exactly [CGALPMP]. Volumes are rationals
+// given as canonical text, "p/q" in lowest terms with q > 0, or "p" when q == 1, so equal volumes
+// give equal strings and a test compares them as strings. No GMP or CGAL type crosses this header.
+//
+// Cost: the numbers are exact, so their size grows with the input's. A vertex made by three
+// planes has coordinates with numerators below 2^295 and a denominator below 2^252; a volume sums
+// such rationals, and when many vertices have distinct denominators the sum's denominator can grow
+// to thousands of bits (the sum is exact, not fast). Faces whose vertices are all grid points cost
+// integer arithmetic only.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "geometry/grid.h"
+#include "geometry/plane_polygon.h"
+#include "solid/merge.h"
+
+namespace bsp {
+
+struct ExactBoundaryCheck {
+  std::uint64_t faces = 0, edges = 0;  // faces given, their edges
+  std::uint64_t vertices = 0;          // distinct vertices (equal exact coordinates are one vertex)
+  std::uint64_t lines = 0;             // distinct supporting lines of edges
+  // Maximal pieces of a line where the signed edge coverage is not zero: where the boundary of
+  // the faces' boundary is not empty. A piece runs from where the coverage leaves zero to where
+  // it returns to zero (a change from +1 to -1 inside it does not end it).
+  std::uint64_t border_segments = 0;
+  std::string volume;        // enclosed volume in grid units^3 (divergence theorem), canonical text
+  double volume_double = 0;  // the same, truncated toward zero (within one unit in the last place)
+  bool closed() const { return border_segments == 0; }
+};
+
+// Faces oriented outward (the support's front is outside), each a valid plane polygon (is_valid),
+// with the grid planes' bounds (geometry/grid_plane.h: |a|, |b|, |c| < 2^83, |d| < 2^125; checked,
+// std::invalid_argument otherwise, as is a vertex whose three planes do not meet in a point).
+// Exact throughout: vertices are rationals (Cramer's rule), and closure is decided on every edge's
+// supporting line: an edge from P to Q adds the coverage +1 (along the line's direction) or -1
+// (against it) over PQ, and the faces are closed when every line's coverage is zero everywhere
+// (the boundary of the boundary is empty). Edges need not match one to one: a T-junction, where
+// one face's edge is covered by two edges of others, is closed.
+ExactBoundaryCheck check_exact_boundary(std::span<const PlanePolygon> faces);
+
+// The exact volume of one closed mesh of grid-point polygons, each convex (fanned from its first
+// point), oriented outward (counter-clockwise seen from outside), coordinates below 2^kGridBits
+// in magnitude (std::invalid_argument otherwise). Integer arithmetic, no CGAL: six times the
+// volume is a sum of integer determinants.
+std::string exact_mesh_volume(std::span<const std::vector<GridPoint>> polys);
+
+// PMP::corefine_and_compute_{union,intersection,difference} [CGALPMP] with exact constructions
+// (CGAL's Epeck) on two closed meshes of grid-point polygons as above (convex polygons fanned into
+// triangles, vertices shared by equal coordinates); the symmetric difference is the union of both
+// differences, as `corefine` in validate/exact_solid.h. The result's volume is PMP::volume made
+// exact. Throws std::runtime_error when an operand is not a closed polygon mesh or CGAL reports
+// failure (self-intersecting operands).
+struct ExactCorefine {
+  std::string volume;        // canonical text, grid units^3
+  double volume_double = 0;  // the same, truncated toward zero
+  double seconds = 0;        // wall time: both meshes built, the operation, the volume
+  std::size_t triangles = 0;
+};
+ExactCorefine exact_corefine(std::span<const std::vector<GridPoint>> a, std::span<const std::vector<GridPoint>> b,
+                             SetOp op);
+
+}  // namespace bsp
