@@ -3,7 +3,9 @@
 // Student-t interval over the seeds (metrics/statistics.h), with two Embree checks of every tree
 // summed over the seeds: its back-to-front orders (validate/order_check.h) and its ray shooting
 // (validate/ray_shoot_check.h). --views sets both the metrics' views and the validation's eyes.
-// Exit code 1 when any check fails.
+// With --kernel exact each tree is built in the exact kernel, measured on its view (vertices from
+// planes) and its orders checked exactly (validate/exact_order_check.h); the ray-shooting check,
+// a float traversal, is not run then (its counts are 0). Exit code 1 when any check fails.
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -25,6 +27,7 @@
 #include "metrics/tree_metrics.h"
 #include "split/registry.h"
 #include "tree/build.h"
+#include "validate/exact_order_check.h"
 #include "validate/order_check.h"
 #include "validate/ray_shoot_check.h"
 
@@ -46,6 +49,7 @@ struct CompareSpec {
   std::uint64_t seeds = 1;
   std::vector<std::string> heuristics;
   BuildOptions options;
+  Kernel kernel = Kernel::Float;
   MetricsSettings metrics;
   ValidationSettings validation;
 };
@@ -88,6 +92,11 @@ CompareSpec parse(Args& args) {
   return s;
 }
 
+// --kernel, checked against the build options and the scene as the other commands do.
+Kernel kernel_for(Args& args, const CompareSpec& s, const Scene& scene) {
+  return kernel_from(args, TreeArgs{"", {}, s.options, s.seed}, scene);
+}
+
 // A generated scene is made anew for each seed; a mesh (a file or mesh:NAME) has no seed, so it is
 // read once and every seed only feeds the heuristic.
 bool seeded_scene(const CompareSpec& s) { return !s.input && !is_mesh_scene(s.scene); }
@@ -115,9 +124,14 @@ struct Run {
 Run run_once(const CompareSpec& s, const Scene& scene, const std::string& heuristic, std::uint64_t seed) {
   TreeArgs t{heuristic, {}, s.options, seed};
   t.options.order_seed = insertion_order_seed(seed);
-  const Tree tree = build_from_args(scene, t);
   MetricsSettings m = s.metrics;
   m.seed = seed;
+  if (s.kernel == Kernel::Exact) {
+    const ExactTree exact = build_exact_from_args(scene, t);
+    return {to_json(experiments::measure_drawing(exact.tree, scene.polygons, m)),
+            validate_exact_tree(exact, s.validation).report, RayShootCheck{}};
+  }
+  const Tree tree = build_from_args(scene, t);
   return {to_json(experiments::measure_drawing(tree, scene.polygons, m)), validate_tree(tree, s.validation),
           check_ray_shooting(tree, s.validation)};
 }
@@ -174,7 +188,7 @@ nlohmann::json header(const CompareSpec& s, const std::vector<Scene>& scenes) {
   for (std::uint64_t k = 0; k < s.seeds; ++k) seeds.push_back(s.seed + k);
   nlohmann::json params = scene_json(scenes.front())["params"];
   params.erase("seed");
-  return {{"scene", s.scene},
+  nlohmann::json out = {{"scene", s.scene},
           {"scene_params", params},
           {"seeds", seeds},
           {"scenes", scene_instances(s, scenes)},
@@ -184,6 +198,8 @@ nlohmann::json header(const CompareSpec& s, const std::vector<Scene>& scenes) {
           {"cell_margin", s.metrics.cell_margin},
           {"views", s.metrics.views},
           {"rays", s.metrics.rays}};
+  if (s.kernel != Kernel::Float) out["kernel"] = kernel_name(s.kernel);
+  return out;
 }
 
 std::string mean_and_interval(const nlohmann::json& summary) {
@@ -214,10 +230,11 @@ void print_table(const nlohmann::json& out) {
 
 int run(Args& args) {
   const bool json = args.flag("--json");
-  const CompareSpec spec = parse(args);
-  args.finish();
+  CompareSpec spec = parse(args);
   std::vector<Scene> scenes;
   for (std::uint64_t k = 0; k < (seeded_scene(spec) ? spec.seeds : 1); ++k) scenes.push_back(scene_for(spec, spec.seed + k));
+  spec.kernel = kernel_for(args, spec, scenes.front());
+  args.finish();
   nlohmann::json out = header(spec, scenes);
   out["heuristics"] = nlohmann::json::array();
   std::uint64_t failures = 0;
@@ -242,7 +259,7 @@ Command compare_command() {
   static const std::string usage =
       "(--scene NAME [--n N] [--scene-param k=v]... | --input FILE) [--seed S] (--heuristics all|NAME[,NAME]... | "
       "--incremental "
-      "[--order given|shuffled]) [--seeds K] [--shape strict|coarse|leafy] " +
+      "[--order given|shuffled]) [--seeds K] [--shape strict|coarse|leafy] " + std::string(kKernelUsage) + " " +
       std::string(kMetricsUsage) + " [--json]";
   static const OptionHelps own = {
       {"--scene NAME", kSceneOptions[0].meaning},
@@ -255,7 +272,7 @@ Command compare_command() {
       {"--seeds K", "runs per heuristic, each with its own seed (default 1)"}};
   return {"compare", usage,
           "every heuristic on one scene over K seeds: each metric's mean and 95% interval, and validation", run,
-          concat({own, kBuildModeOptions, kMetricsOptions, kJsonOption})};
+          concat({own, kBuildModeOptions, {kKernelOption}, kMetricsOptions, kJsonOption})};
 }
 
 }  // namespace bsp::cli

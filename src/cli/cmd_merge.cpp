@@ -60,6 +60,57 @@ nlohmann::json operand_json(const Scene& scene, const SolidBuild& b) {
           {"out_leaves", size.out_leaves}};
 }
 
+nlohmann::json exact_operand_json(const Scene& scene, const ExactSolidBuild& b) {
+  const SolidSize size = solid_size(b.solid);
+  return {{"scene", scene_json(scene)},
+          {"fragments", b.fragments},
+          {"dropped_input", b.build.dropped_input},  // snapping collapsed them (exact_build.h)
+          {"build_seconds", b.build.build_seconds},
+          {"label_seconds", b.label_seconds},
+          {"nodes", size.nodes},
+          {"depth", size.depth},
+          {"in_leaves", size.in_leaves},
+          {"out_leaves", size.out_leaves}};
+}
+
+void print(const nlohmann::json& out, bool json) {
+  if (json) {
+    std::cout << out.dump() << "\n";
+  } else {
+    for (const auto& [k, v] : out.items()) std::cout << k << ": " << v.dump() << "\n";
+  }
+}
+
+// The exact kernel's merge (experiments/merge/set_operation.h). The OBJ's vertices are computed from
+// their planes and rounded; the faces that share a vertex exactly are welded within plane_eps for
+// the file, which is output only.
+int run_exact(const Scene& a, const Scene& b, SetOp op, const experiments::HeuristicChoice& heuristic,
+              std::uint64_t seed, const SolidCheckSettings& settings, const std::optional<std::string>& out_path,
+              bool json) {
+  const auto splitter = heuristic.splitter(seed);
+  const experiments::ExactSetOperationRun run = experiments::run_exact_set_operation(a, b, op, *splitter, settings);
+  const nlohmann::json out = {{"op", set_op_name(op)},
+                              {"kernel", "exact"},
+                              {"heuristic", heuristic.name},
+                              {"heuristic_params", heuristic.resolved.to_json()},
+                              {"seed", seed},
+                              {"a", exact_operand_json(a, run.operands.a)},
+                              {"b", exact_operand_json(b, run.operands.b)},
+                              {"merge", to_json(run.stats)},
+                              {"check", to_json(run.check)}};
+  if (out_path) {
+    LoopPool faces;
+    for (const PlanePolygon& f : run.boundary) faces.add(vertex_positions(f, run.operands.space->grid()));
+    IndexedMesh mesh;
+    const Box box = solid_box(bounds(a), bounds(b));
+    check_boundary(faces, Tolerance::for_extent(box.diagonal()).plane_eps, &mesh);
+    write_file_atomically(*out_path, to_obj(mesh, "bspbench merge --kernel exact " + std::string(set_op_name(op)) +
+                                                      " of " + a.name + " and " + b.name + " (" + heuristic.name + ")"));
+  }
+  print(out, json);
+  return run.check.ok() ? 0 : 1;
+}
+
 int run(Args& args) {
   const bool json = args.flag("--json");
   const std::string a_spec = args.required("--a"), b_spec = args.required("--b");
@@ -74,11 +125,15 @@ int run(Args& args) {
   settings.points = static_cast<std::uint64_t>(args.integer("--points", 0, kMaxPoints).value_or(settings.points));
   settings.seed = seed;
   const auto out_path = args.option("--out");
+  const std::string kernel_text = args.option("--kernel").value_or("float");
   args.finish();
+  const auto kernel = kernel_named(kernel_text);
+  if (!kernel) throw UsageError("--kernel must be float or exact, not '" + kernel_text + "'");
   if (out_path && !out_path->ends_with(".obj")) throw UsageError("--out must name a .obj file, not '" + *out_path + "'");
 
   const Scene a = operand(a_spec, a_params, "--a", a_offset), b = operand(b_spec, b_params, "--b", b_offset);
   const auto heuristic = experiments::HeuristicChoice::of(heuristic_name, params);
+  if (*kernel == Kernel::Exact) return run_exact(a, b, op, heuristic, seed, settings, out_path, json);
   const auto splitter = heuristic.splitter(seed);
   const experiments::SetOperationRun run = experiments::run_set_operation(a, b, op, *splitter, settings);
   const SolidTree& result = run.result;
@@ -98,11 +153,7 @@ int run(Args& args) {
     write_file_atomically(*out_path, to_obj(mesh, "bspbench merge " + std::string(set_op_name(op)) + " of " + a.name +
                                                       " and " + b.name + " (" + heuristic.name + ")"));
   }
-  if (json) {
-    std::cout << out.dump() << "\n";
-  } else {
-    for (const auto& [k, v] : out.items()) std::cout << k << ": " << v.dump() << "\n";
-  }
+  print(out, json);
   return check.ok(kVolumeRelativeTolerance) ? 0 : 1;
 }
 
@@ -111,7 +162,7 @@ int run(Args& args) {
 Command merge_command() {
   return {"merge",
           "--a SCENE|FILE [--a-param k=v]... [--a-offset X,Y,Z] --b SCENE|FILE [--b-param k=v]... [--b-offset X,Y,Z] --op union|intersection|difference|xor "
-          "[--heuristic H] [--param k=v]... [--seed S] [--points N] [--out RESULT.obj] [--json]",
+          "[--heuristic H] [--param k=v]... [--seed S] [--points N] [--kernel float|exact] [--out RESULT.obj] [--json]",
           "set operation on two closed solids by merging their BSP trees, proved against CGAL", run,
           concat({{{"--a SCENE|FILE", "first operand: a closed solid scene (bspbench scenes), mesh:NAME, or a mesh file"},
                    {"--a-param k=v", "a parameter of the first operand's scene (x, y, z, scale, n, seed...); repeatable"},
@@ -124,6 +175,7 @@ Command merge_command() {
                    {"--param k=v", "a heuristic parameter; repeatable"},
                    {"--seed S", "the heuristic's seed and the check's points' (default 1)"},
                    {"--points N", "points classified against CGAL's exact answer (default 100000)"},
+                   {"--kernel K", "float (default) or exact: the operands snapped to one grid, merged exactly, the result's exact volume against CGAL's exact corefinement"},
                    {"--out RESULT.obj", "write the result's boundary, welded, as OBJ (atomically)"}},
                   kJsonOption})};
 }

@@ -316,6 +316,20 @@ ExactSolidTree merge_with_table(const ExactSolidTree& a, const ExactSolidTree& b
   return result;
 }
 
+void discard(const ExactSolidTree& result, const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space) {
+  std::uint32_t ids = 0;
+  for (const std::uint32_t id : result.shp) ids = std::max(ids, id + 1);
+  std::vector<bool> keep(ids, false), released(ids, false);
+  for (const auto* t : {&a, &b})
+    for (const std::uint32_t id : t->shp)
+      if (id < ids) keep[id] = true;
+  for (const std::uint32_t id : result.shp)  // a subtree two parents share is stored twice, its shps once
+    if (!keep[id] && !released[id]) {
+      space.shps().release(id);
+      released[id] = true;
+    }
+}
+
 ExactSolidTree merge(const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space, SetOp op,
                      MergeStats* stats) {
   return merge_with_table(a, b, space, cell_table(op), stats);

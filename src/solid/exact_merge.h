@@ -25,6 +25,10 @@ ExactSolidTree merge(const ExactSolidTree& a, const ExactSolidTree& b, ExactSoli
 ExactSolidTree merge_with_table(const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space,
                                 const CellTable& table, MergeStats* stats = nullptr);
 
+// Releases the sub-hyperplanes of a merge's result that neither operand holds: for a result that is
+// no longer needed (timing repeats a merge in one space). The result must not be used afterwards.
+void discard(const ExactSolidTree& result, const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space);
+
 // Collapses every subtree whose leaves all carry one label into that leaf and stores the nodes that
 // remain in pre-order (a subtree two parents share is stored once per parent). Exactly, no node's
 // plane misses its region, so that step of reduce() in merge.h has nothing to do.

@@ -119,7 +119,8 @@ std::string command(const MergeSpec& s) {
     for (const auto& [k, v] : ops[i].params) out += " " + which + "-param " + k + "=" + v;
   }
   return out + " --op " + std::string(set_op_name(s.op)) + s.heuristic.arguments() + " --seed " +
-         std::to_string(s.seed) + " --points " + std::to_string(s.points);
+         std::to_string(s.seed) + " --points " + std::to_string(s.points) +
+         (s.kernel == Kernel::Exact ? " --kernel exact" : "");
 }
 
 // The key: the pair, both operands as resolved, the heuristic, the operation, the seed and the
@@ -137,6 +138,7 @@ std::string merge_key(const MergeSpec& s) {
   h.add_string(set_op_name(s.op));
   h.add_u64(s.seed);
   h.add_u64(s.points);
+  if (s.kernel != Kernel::Float) h.add_string(kernel_name(s.kernel));  // float keys stay as they were
   return h.hex();
 }
 
@@ -158,7 +160,7 @@ std::vector<std::uint64_t> pair_sizes(const SolidPairInfo& pair, const MergeBloc
 
 std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, const std::string& path) {
   r.expect(j, j.is_object(), path, "an object");
-  r.check_keys(j, path, {"pairs", "heuristics", "ops", "sizes", "seeds", "points"});
+  r.check_keys(j, path, {"pairs", "heuristics", "ops", "sizes", "seeds", "points", "kernels"});
   auto b = std::make_unique<MergeBlock>();
   std::vector<const SolidPairInfo*> chosen;
   if (const json* pairs = r.optional(j, "pairs")) {
@@ -194,6 +196,12 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
     r.fail(path, "missing key 'sizes' (polygons per operand)");
   }
   b->seeds = r.seeds(j, path);
+  if (const json* kernels = r.optional(j, "kernels"))
+    for (const auto& name : r.names(*kernels, child(path, "kernels"), "leave \"kernels\" out for float only",
+                                    [](const std::string& k) {
+                                      if (!kernel_named(k)) throw UsageError("unknown kernel '" + k + "' (float or exact)");
+                                    }))
+      b->kernels.push_back(*kernel_named(name));
   b->points = kDefaultPoints;
   if (const json* points = r.optional(j, "points")) b->points = r.integer(*points, child(path, "points"), 0, kMaxPoints);
   return b;
@@ -214,7 +222,9 @@ Jobs MergeBlock::expand() const {
     for (auto n : pair_sizes(pair, *this))
       for (const auto& h : choices_or_all(heuristics))
         for (auto op : all_ops)
-          for (auto seed : seeds) out.push_back(std::make_shared<MergeJob>(MergeSpec{pair.name, n, h, op, seed, points}));
+          for (auto kernel : kernels.empty() ? std::vector<Kernel>{Kernel::Float} : kernels)
+            for (auto seed : seeds)
+              out.push_back(std::make_shared<MergeJob>(MergeSpec{pair.name, n, h, op, seed, points, kernel}));
   }
   return out;
 }
@@ -228,7 +238,7 @@ nlohmann::json MergeJob::identity() const {
   json pair_params = json::object();
   if (spec_.n > 0) pair_params["n"] = spec_.n;
   pair_params["seed"] = spec_.seed;
-  return {{"kind", "merge"},
+  json id = {{"kind", "merge"},
           {"scene", spec_.pair},
           {"scene_params", std::move(pair_params)},
           {"operands", std::move(ops)},
@@ -241,12 +251,91 @@ nlohmann::json MergeJob::identity() const {
           {"n", spec_.n},
           {"points", spec_.points},
           {"command", command(spec_)}};
+  if (spec_.kernel != Kernel::Float) id["kernel"] = kernel_name(spec_.kernel);
+  return id;
+}
+
+namespace {
+
+json exact_operand_metrics(const ExactSetOperationRun& run) {
+  json m = json::object();
+  for (const auto& [prefix, o] : {std::pair{"a_", &run.operands.a}, std::pair{"b_", &run.operands.b}}) {
+    m[std::string(prefix) + "fragments"] = o->fragments;
+    flatten_into(to_json(solid_size(o->solid)), prefix, m);
+  }
+  return m;
+}
+
+// The exact kernel's record: the same fields where they mean the same, the exact answers beside
+// them (validate/exact_solid_check.h): border edges are the boundary's exact border segments, and
+// the volume check is equality of rationals. A rational's text runs to thousands of digits, so the
+// record keeps its length and a hash (`bspbench merge --kernel exact --json` prints it whole).
+void exact_volumes(const ExactSolidCheck& c, json& validation) {
+  validation["volume_equal"] = c.volume_equal();
+  for (const auto& [name, text] : {std::pair{"volume_exact", &c.boundary.volume},
+                                   std::pair{"corefine_volume_exact", &c.corefine_volume}}) {
+    Hasher h;
+    h.add_string(*text);
+    validation[std::string(name) + "_hash"] = h.hex();
+    validation[std::string(name) + "_chars"] = text->size();
+  }
+}
+
+}  // namespace
+
+json MergeJob::run_exact(const RunContext& context, const Scene& a, const Scene& b, double start) const {
+  const auto splitter = spec_.heuristic.splitter(spec_.seed);
+  SolidCheckSettings settings;
+  settings.points = spec_.points;
+  settings.seed = spec_.seed;
+  json timings = json::object();
+  double check_start = 0;
+  const ExactSetOperationRun run =
+      run_exact_set_operation(a, b, spec_.op, *splitter, settings, [&](ExactSolidOperands& o) {
+        std::vector<Polygon> both = a.polygons;
+        both.insert(both.end(), b.polygons.begin(), b.polygons.end());
+        const ReferenceBuild reference(both);
+        const TimedBatches batches = time_batches(
+            [&] { discard(merge(o.a.solid, o.b.solid, *o.space, spec_.op), o.a.solid, o.b.solid, *o.space); },
+            context.slowdown(spec_.heuristic.label), [&] { reference.run(); });
+        timings["merge_cpu_samples"] = batches.samples;
+        timings["merge_reference_samples"] = batches.reference;
+        timings["merge_cpu_merges"] = batches.runs;
+        timings["merge_cpu_seconds"] = batches.median();
+        check_start = wall_seconds();
+      });
+  timings["check_seconds"] = wall_seconds() - check_start;
+  timings["build_a_cpu_seconds"] = run.operands.a_cpu_seconds;
+  timings["build_b_cpu_seconds"] = run.operands.b_cpu_seconds;
+  timings["corefine_seconds"] = run.check.corefine_seconds;
+  const json check = to_json(run.check);
+  json id = identity();
+  id["n_polygons"] = a.polygons.size() + b.polygons.size();
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Scene& s = i == 0 ? a : b;
+    id["operands"][i]["n_polygons"] = s.polygons.size();
+    id["operands"][i]["scene_hash"] = scene_json(s)["hash"];
+  }
+  json metrics = exact_operand_metrics(run);
+  flatten_into(to_json(run.stats), "", metrics);
+  split_timings(metrics, timings, "", kTimings);
+  pick_fields(check, kCheckMetricFields, metrics);
+  json invariants = json::object();
+  pick_fields(check, kInvariantFields, invariants);
+  invariants["violations"] = run.check.boundary.border_segments;
+  json validation = json::object();
+  pick_fields(check, kValidationFields, validation);
+  exact_volumes(run.check, validation);
+  validation["violations"] = run.check.mismatches + (run.check.volume_equal() ? 0 : 1);
+  return make_record(*this, std::move(id), std::move(metrics), std::move(invariants), std::move(validation), nullptr,
+                     std::move(timings), start);
 }
 
 nlohmann::json MergeJob::run(const RunContext& context) const {
   const double start = wall_seconds();
   const auto specs = operands(spec_);
   const Scene a = operand_scene(specs[0]), b = operand_scene(specs[1]);
+  if (spec_.kernel == Kernel::Exact) return run_exact(context, a, b, start);
   const auto splitter = spec_.heuristic.splitter(spec_.seed);
   SolidCheckSettings settings;
   settings.points = spec_.points;

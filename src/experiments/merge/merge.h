@@ -13,7 +13,9 @@
 
 #include "experiments/heuristic_choice.h"
 #include "experiments/kind.h"
+#include "scene/scene.h"
 #include "solid/merge.h"
+#include "tree/exact_build.h"
 
 namespace bsp::experiments {
 
@@ -24,6 +26,7 @@ struct MergeBlock final : Block {
   std::vector<std::uint64_t> sizes;     // polygons per operand, within the pair's range; unsized pairs run once
   std::vector<std::uint64_t> seeds;
   std::uint64_t points = 0;             // classified against CGAL's exact answer per run
+  std::vector<Kernel> kernels;          // empty: float only
 
   Jobs expand() const override;
 };
@@ -35,6 +38,7 @@ struct MergeSpec {
   SetOp op = SetOp::Union;
   std::uint64_t seed = 1;  // the pair's, the heuristic's and the checked points'
   std::uint64_t points = 0;
+  Kernel kernel = Kernel::Float;  // joins the key and the identity only when exact
 };
 
 class MergeJob final : public Job {
@@ -46,6 +50,7 @@ class MergeJob final : public Job {
   const MergeSpec& spec() const { return spec_; }
 
  private:
+  nlohmann::json run_exact(const RunContext& context, const Scene& a, const Scene& b, double start) const;
   MergeSpec spec_;
 };
 

@@ -8,9 +8,11 @@
 #include <functional>
 
 #include "scene/scene.h"
+#include "solid/exact_merge.h"
 #include "solid/merge.h"
 #include "solid/solid_build.h"
 #include "split/splitter.h"
+#include "validate/exact_solid_check.h"
 #include "validate/solid_check.h"
 
 namespace bsp::experiments {
@@ -34,5 +36,29 @@ struct SetOperationRun {
 SetOperationRun run_set_operation(const Scene& a, const Scene& b, SetOp op, Splitter& splitter,
                                   const SolidCheckSettings& settings,
                                   const std::function<void(const SolidOperands&)>& after_merge = {});
+
+// The same in the exact kernel: both operands snapped to the grid of their common box (one space),
+// built as exact solid trees, merged exactly, and the result proved at grid points, by its exact
+// volume against CGAL's exact corefinement of the same snapped operands, and by its exact closure
+// (validate/exact_solid_check.h). Besides the float path's refusals, throws InputError when the
+// snapped operands are not closed or their faces intersect (snapping can make faces meet).
+struct ExactSolidOperands {
+  std::unique_ptr<ExactSolidSpace> space;
+  ExactSolidBuild a, b;
+  double a_cpu_seconds = 0, b_cpu_seconds = 0;
+};
+
+struct ExactSetOperationRun {
+  ExactSolidOperands operands;
+  MergeStats stats;
+  ExactSolidTree result;
+  std::vector<PlanePolygon> boundary;
+  double boundary_seconds = 0;
+  ExactSolidCheck check;
+};
+
+ExactSetOperationRun run_exact_set_operation(const Scene& a, const Scene& b, SetOp op, Splitter& splitter,
+                                             const SolidCheckSettings& settings,
+                                             const std::function<void(ExactSolidOperands&)>& after_merge = {});
 
 }  // namespace bsp::experiments

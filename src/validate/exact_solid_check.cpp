@@ -1,0 +1,120 @@
+#include "validate/exact_solid_check.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "common/rng.h"
+#include "geometry/snap.h"
+#include "validate/exact_solid.h"
+
+namespace bsp {
+
+namespace {
+
+bool combine(SetOp op, bool in_a, bool in_b) {
+  switch (op) {
+    case SetOp::Union: return in_a || in_b;
+    case SetOp::Intersection: return in_a && in_b;
+    case SetOp::Difference: return in_a && !in_b;
+    case SetOp::SymmetricDifference: return in_a != in_b;
+  }
+  return false;
+}
+
+Vec3 as_vec(const GridPoint& q) { return {static_cast<double>(q.x), static_cast<double>(q.y), static_cast<double>(q.z)}; }
+
+GridPoint nearest(const Vec3& p) { return {std::llround(p.x), std::llround(p.y), std::llround(p.z)}; }
+
+std::vector<std::vector<GridPoint>> snapped_corners(std::span<const Polygon> polys, const Grid& grid) {
+  return snap_polygons(polys, grid).corners;
+}
+
+// A grid point near a random face: uniform in the face's fan triangle, pushed off it by up to
+// `reach` grid units, rounded to the grid.
+GridPoint near_surface(std::span<const Polygon> faces, Rng& rng, double reach) {
+  const Polygon& p = faces[rng.below(faces.size())];
+  const std::size_t k = 1 + rng.below(p.verts.size() - 2);
+  double u = rng.uniform(), v = rng.uniform();
+  if (u + v > 1) u = 1 - u, v = 1 - v;
+  const Vec3 a = p.verts[0].p, b = p.verts[k].p, c = p.verts[k + 1].p;
+  const Vec3 n = normalize(cross(b - a, c - a));
+  return nearest(a + (b - a) * u + (c - a) * v + n * rng.uniform(-reach, reach));
+}
+
+}  // namespace
+
+std::vector<Polygon> grid_unit_polygons(std::span<const Polygon> polys, const Grid& grid) {
+  std::vector<Polygon> out;
+  for (const auto& corners : snapped_corners(polys, grid)) {
+    Polygon p;
+    for (const GridPoint& q : corners) p.verts.push_back({as_vec(q)});
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+ExactSolidCheck check_exact_set_operation(const ExactSolidTree& result, const ExactSolidSpace& space,
+                                          std::span<const PlanePolygon> boundary, std::span<const Polygon> a,
+                                          std::span<const Polygon> b, SetOp op, const SolidCheckSettings& settings) {
+  ExactSolidCheck c;
+  const std::vector<Polygon> ga = grid_unit_polygons(a, space.grid()), gb = grid_unit_polygons(b, space.grid());
+  const ExactSolid ea(ga), eb(gb);
+  Box box;
+  for (const auto* polys : {&ga, &gb})
+    for (const Polygon& p : *polys)
+      for (const Vertex& v : p.verts) box.add(v.p);
+  const double reach = settings.near_distance * box.diagonal();
+  Rng rng(stream_seed(settings.seed, 0xe5011d));
+  for (std::uint64_t i = 0; i < settings.points; ++i) {
+    const GridPoint q = i % 2 == 0 ? nearest({rng.uniform(box.lo.x, box.hi.x), rng.uniform(box.lo.y, box.hi.y),
+                                              rng.uniform(box.lo.z, box.hi.z)})
+                                   : near_surface(i % 4 == 1 ? ga : gb, rng, reach);
+    ++c.points;
+    const ExactSide sa = ea.side(as_vec(q)), sb = eb.side(as_vec(q));
+    if (sa == ExactSide::Boundary || sb == ExactSide::Boundary) {
+      ++c.on_operand;
+      continue;
+    }
+    ++c.compared;
+    const bool truth = combine(op, sa == ExactSide::Inside, sb == ExactSide::Inside);
+    c.mismatches += classify_point(result, space, q) != (truth ? PointClass::In : PointClass::Out);
+  }
+  c.boundary = check_exact_boundary(boundary);
+  const double step = space.grid().step();
+  c.volume = c.boundary.volume_double * step * step * step;
+  try {
+    const ExactCorefine r = exact_corefine(snapped_corners(a, space.grid()), snapped_corners(b, space.grid()), op);
+    c.corefine_volume = r.volume;
+    c.corefine_seconds = r.seconds;
+  } catch (const std::runtime_error& e) {
+    c.corefine_error = e.what();
+  }
+  return c;
+}
+
+nlohmann::json to_json(const ExactSolidCheck& c) {
+  return {{"points", c.points},
+          {"on_operand_surface", c.on_operand},
+          {"within_plane_eps", 0},
+          {"within_plane_eps_disagree", 0},
+          {"compared", c.compared},
+          {"mismatches", c.mismatches},
+          {"tree_volume", c.volume},
+          {"volume_exact", c.boundary.volume},
+          {"corefine_volume_exact", c.corefine_volume},
+          {"volume_equal", c.volume_equal()},
+          {"corefine_seconds", c.corefine_seconds},
+          {"corefine_error", c.corefine_error},
+          {"boundary",
+           {{"faces", c.boundary.faces},
+            {"edges", c.boundary.edges},
+            {"lines", c.boundary.lines},
+            {"border_edges", c.boundary.border_segments},
+            {"volume", c.volume}}},
+          {"ok", c.ok()}};
+}
+
+}  // namespace bsp
