@@ -3,6 +3,8 @@
 // test names the degeneracy or the planted error it covers.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <pthread.h>
 
 #include <string>
@@ -15,6 +17,10 @@
 #include "solid/exact_solid_tree.h"
 #include "split/registry.h"
 #include "validate/exact_solid.h"
+#include "validate/exact_solid_check.h"
+#include "cli_runner.h"
+#include <filesystem>
+#include <fstream>
 
 namespace bsp {
 namespace {
@@ -227,6 +233,96 @@ TEST(ExactMergeCheck, CatchesAWrongTreeOpCellRow) {
   CellTable wrong = cell_table(SetOp::Union);
   wrong.first_leaf[0] = CellResult::Out;  // an OUT cell of A drops what B holds there
   EXPECT_GT(prove_points(merge_with_table(a, b, *p.space, wrong), p, SetOp::Union).mismatches, 0);
+}
+
+// ---- the whole proof: exact volume against CGAL's exact corefinement, closure, points ----------
+
+ExactSolidCheck prove_exactly(const ExactSolidTree& r, ExactPair& p, SetOp op, std::vector<PlanePolygon> boundary) {
+  SolidCheckSettings settings;
+  settings.points = 2000;
+  return check_exact_set_operation(r, *p.space, boundary, p.a, p.b, op, settings);
+}
+
+TEST(ExactMergeProof, VolumeIsCgalsExactVolumeAndTheBoundaryIsClosedForEveryHeuristicAndOperation) {
+  ExactPair p(scene("sphere", {{"n", "300"}}), scene("sphere", {{"n", "300"}, {"x", "0.5"}, {"scale", "0.9"}}));
+  for (const std::string h : {"first", "crystal", "halving", "naylor"}) {
+    const ExactSolidTree a = p.solid(p.a, h), b = p.solid(p.b, h);
+    for (SetOp op : kOps) {
+      const ExactSolidTree r = merge(a, b, *p.space, op);
+      const ExactSolidCheck c = prove_exactly(r, p, op, exact_solid_boundary(r, *p.space));
+      EXPECT_TRUE(c.ok()) << h << " " << set_op_name(op) << ": mismatches " << c.mismatches << ", border segments "
+                          << c.boundary.border_segments << ", volume equal " << c.volume_equal() << " "
+                          << c.corefine_error;
+      EXPECT_GT(c.boundary.volume.size(), 100u) << "rational, not rounded";
+    }
+  }
+}
+
+TEST(ExactMergeProof, CatchesAMissingBoundaryFaceAndAFlippedCell) {
+  ExactPair p(scene("torus", {{"n", "400"}}), scene("torus", {{"n", "400"}, {"x", "0.6"}, {"seed", "2"}}));
+  const ExactSolidTree a = p.solid(p.a, "crystal"), b = p.solid(p.b, "crystal");
+  ExactSolidTree r = merge(a, b, *p.space, SetOp::Union);
+  std::vector<PlanePolygon> boundary = exact_solid_boundary(r, *p.space);
+  ASSERT_TRUE(prove_exactly(r, p, SetOp::Union, boundary).ok());
+  boundary.pop_back();  // a hole
+  const ExactSolidCheck holed = prove_exactly(r, p, SetOp::Union, boundary);
+  EXPECT_GT(holed.boundary.border_segments, 0u);
+  EXPECT_FALSE(holed.volume_equal());
+  for (auto& n : r.nodes)  // an IN cell turned OUT: a closed boundary around the wrong volume
+    if (n.back == kIn) {
+      n.back = kOut;
+      break;
+    }
+  const ExactSolidCheck flipped = prove_exactly(r, p, SetOp::Union, exact_solid_boundary(r, *p.space));
+  EXPECT_TRUE(flipped.boundary.closed());
+  EXPECT_FALSE(flipped.volume_equal());
+}
+
+// ---- the commands ----------------------------------------------------------------------------
+
+TEST(ExactMergeCli, ProvesAUnionExactlyAndWritesAnObj) {
+  const auto dir = testing::fresh_test_dir("exact_merge_cli");
+  const auto r = testing::run_bspbench(
+      "merge --a sphere --a-param n=300 --b sphere --b-param n=300 --b-param x=0.5 --op difference --heuristic halving "
+      "--points 2000 --kernel exact --json --out " + (dir / "d.obj").string(), dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  EXPECT_EQ(out["kernel"], "exact");
+  EXPECT_EQ(out["check"]["volume_equal"], true);
+  EXPECT_EQ(out["check"]["boundary"]["border_edges"], 0);
+  EXPECT_EQ(out["check"]["volume_exact"], out["check"]["corefine_volume_exact"]);
+  EXPECT_TRUE(std::filesystem::exists(dir / "d.obj"));
+  const auto bad = testing::run_bspbench("merge --a sphere --b sphere --op union --kernel fixed", dir);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--kernel must be float or exact"), std::string::npos) << bad.err;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ExactClassifyCli, DecidesSnappedPointsExactlyOnTheFaceItself) {
+  const auto dir = testing::fresh_test_dir("exact_classify_cli");
+  {
+    std::ofstream f(dir / "points.txt");
+    f << "0 0 0\n5 0 0\n1 0.25 0.5\n1e300 0 0\n";
+  }
+  const auto r = testing::run_bspbench(
+      "classify --solid box --solid-param seed=0 --kernel exact --points " + (dir / "points.txt").string(), dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "in\nout\non\nout\n");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(ExactCompareCli, ChecksOrdersExactlyForEveryHeuristic) {
+  const auto dir = testing::fresh_test_dir("exact_compare_cli");
+  const auto r = testing::run_bspbench(
+      "compare --scene near-degenerate --n 200 --heuristics first,crystal --views 2 --kernel exact --json", dir);
+  EXPECT_EQ(r.code, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out);
+  EXPECT_EQ(out["kernel"], "exact");
+  for (const auto& h : out["heuristics"]) {
+    EXPECT_EQ(h["validation"]["order_violations"], 0);
+    EXPECT_GT(h["validation"]["order_rays"], 0);
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -377,6 +377,29 @@ TEST(SweepSuites, MergeBlocksExpandToPairSizeHeuristicOperationAndSeed) {
   EXPECT_EQ(keys.size(), jobs.size());
 }
 
+// "kernels" in a merge block doubles its jobs; a float job's key is the key it had before kernels
+// existed (so baselines keep matching), and an exact one's names the kernel.
+TEST(SweepSuites, MergeKernelsJoinTheKeyOnlyWhenExact) {
+  const auto jobs_of = [](const std::string& kernels) {
+    return expand(suite_of(R"({"name": "m", "merges": [{"pairs": ["spheres"], "heuristics": ["first"], "ops": ["union"],
+                                "sizes": [50], "seeds": [1], "points": 10)" + kernels + "}]}"));
+  };
+  const auto plain = jobs_of(""), both = jobs_of(R"(, "kernels": ["float", "exact"])");
+  ASSERT_EQ(plain.size(), 1u);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(facts(*both[0]).key, facts(*plain[0]).key);
+  EXPECT_NE(facts(*both[1]).key, facts(*plain[0]).key);
+  EXPECT_FALSE(both[0]->identity().contains("kernel"));
+  EXPECT_EQ(both[1]->identity()["kernel"], "exact");
+  EXPECT_NE(both[1]->identity()["command"].get<std::string>().find("--kernel exact"), std::string::npos);
+  try {
+    jobs_of(R"(, "kernels": ["fixed"])");
+    FAIL() << "an unknown kernel was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown kernel 'fixed'"), std::string::npos) << e.what();
+  }
+}
+
 // The scorers whose sources score every plane run that way too, beside their sampled defaults, in
 // every suite but smoke; the label is the variant, and its parameters reach the build.
 TEST(SweepSuites, ExhaustiveVariantsRunBesideTheSampledDefaults) {
