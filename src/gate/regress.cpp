@@ -31,13 +31,15 @@ constexpr std::pair<const char*, const char*> kMustBeZero[] = {
 
 // The timing group of a run (regress.h): scene, heuristic and what its kind groups by in place of
 // the shape (experiments/kind.h: a merge run's operation, an animate run's update strategy, a fixed
-// word for occlude and Doom runs, whose sizes or maps pool).
+// word for occlude and Doom runs, whose sizes or maps pool), and the kernel when it is not float.
 std::string group_label(const nlohmann::json& id) {
   const experiments::Kind* kind = results::kind_of(id);
   const std::string shape = !kind                              ? id.value("shape", "?")
                             : !kind->timing_group_word.empty() ? std::string(kind->timing_group_word)
                                                                : id.value(std::string(kind->timing_group_field), "?");
-  return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + shape;
+  // A run of the exact kernel (merge --kernel exact) is timed apart from the float runs beside it.
+  const std::string kernel = id.contains("kernel") ? " " + id.value("kernel", "?") : "";
+  return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + shape + kernel;
 }
 
 std::string run_label(const nlohmann::json& id) {

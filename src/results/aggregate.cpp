@@ -34,7 +34,9 @@ nlohmann::json group_head(const nlohmann::json& id, const experiments::Kind& kin
                       {"shape", id["shape"]},
                       {"scene_params", other},
                       {"constant_density", id.value("constant_density", false)}};
-  for (const auto field : kind.group_by) head[std::string(field)] = id[std::string(field)];
+  // A field a run leaves out is left out of its group's head (a merge run's kernel, float unless named).
+  for (const auto field : kind.group_by)
+    if (id.contains(std::string(field))) head[std::string(field)] = id[std::string(field)];
   return head;
 }
 

@@ -37,7 +37,7 @@ constexpr TimingField kTimings[] = {
 };
 
 // What aggregation groups by and fits growth of (experiments/kind.h).
-constexpr std::string_view kGroupBy[] = {"operation"};
+constexpr std::string_view kGroupBy[] = {"operation", "kernel"};
 constexpr std::string_view kGrowthMetrics[] = {"before_nodes", "after_nodes", "partition_nodes"};
 constexpr std::string_view kGrowthTimings[] = {"merge_cpu_seconds", "merge_seconds"};
 
