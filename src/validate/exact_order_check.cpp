@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "tree/exact_traverse.h"
@@ -16,6 +18,45 @@ constexpr std::size_t kRaysPerBatch = 64;
 // A thread's pair keys are sorted and deduplicated once they exceed this many, which bounds memory
 // on views whose rays cross many fragments (as the float check does, order_check.cpp).
 constexpr std::size_t kCompactAt = std::size_t{1} << 22;
+// Every this many rays of a view is also searched exhaustively (exact_order_check.h), besides the
+// rays where a proposal was refused.
+constexpr std::size_t kExhaustiveEvery = 64;
+// The exhaustive search skips a fragment whose bounding box, grown by this much of the scene's
+// extent (diagonal plus the largest coordinate's magnitude), the ray misses in doubles. The view's
+// vertices lie within a few units in the last place of the exact ones, and the slab test rounds a
+// few times more, both far below this: the skip never loses a hit, it only saves the exact test.
+constexpr double kRecoverBoxMargin = 1e-9;
+
+// Whether the ray from `o` along `d` (t >= 0) meets the box, in doubles.
+bool ray_meets_box(const Vec3& o, const Vec3& d, const Box& b) {
+  double lo = 0, hi = std::numeric_limits<double>::infinity();
+  const double os[] = {o.x, o.y, o.z}, ds[] = {d.x, d.y, d.z}, bl[] = {b.lo.x, b.lo.y, b.lo.z}, bh[] = {b.hi.x, b.hi.y, b.hi.z};
+  for (int k = 0; k < 3; ++k) {
+    if (ds[k] == 0) {
+      if (os[k] < bl[k] || os[k] > bh[k]) return false;
+      continue;
+    }
+    double t0 = (bl[k] - os[k]) / ds[k], t1 = (bh[k] - os[k]) / ds[k];
+    if (t0 > t1) std::swap(t0, t1);
+    lo = std::max(lo, t0);
+    hi = std::min(hi, t1);
+    if (lo > hi) return false;
+  }
+  return true;
+}
+
+// Each fragment's box of its view's vertices, grown by kRecoverBoxMargin.
+std::vector<Box> recover_boxes(const std::vector<Polygon>& fragments, const Box& bounds) {
+  const double extent = bounds.diagonal() + std::max({std::abs(bounds.lo.x), std::abs(bounds.lo.y), std::abs(bounds.lo.z),
+                                                      std::abs(bounds.hi.x), std::abs(bounds.hi.y), std::abs(bounds.hi.z)});
+  const double m = kRecoverBoxMargin * extent;
+  std::vector<Box> out(fragments.size());
+  for (std::size_t f = 0; f < fragments.size(); ++f) {
+    for (const Vertex& v : fragments[f].verts) out[f].add(v.p);
+    out[f] = {out[f].lo - Vec3{m, m, m}, out[f].hi + Vec3{m, m, m}};
+  }
+  return out;
+}
 
 Wide wide(std::int64_t v) { return Wide(Int128{v}); }
 
@@ -66,6 +107,7 @@ std::uint64_t unordered_key(std::uint32_t a, std::uint32_t b) {
 struct Tally {
   std::vector<std::uint64_t> checked, violating;  // unordered pair keys
   std::uint64_t hits = 0, hit_pairs = 0, coplanar = 0, touching = 0, refused = 0;
+  std::uint64_t exhaustive_rays = 0, recovered = 0;
   std::size_t compact_checked_at = kCompactAt, compact_violating_at = kCompactAt;
 };
 
@@ -84,8 +126,8 @@ void compact_if_due(std::vector<std::uint64_t>& keys, std::size_t& at) {
 
 class ViewCheck {
  public:
-  ViewCheck(const ExactTree& t, const GridPoint& eye, std::span<const std::uint32_t> order)
-      : t_(t), eye_(eye), pos_(t.fragments.size()) {
+  ViewCheck(const ExactTree& t, const GridPoint& eye, std::span<const std::uint32_t> order, const std::vector<Box>& boxes)
+      : t_(t), eye_(eye), pos_(t.fragments.size()), boxes_(boxes) {
     for (std::uint32_t i = 0; i < order.size(); ++i) pos_[order[i]] = i;
   }
 
@@ -99,12 +141,16 @@ class ViewCheck {
     return std::pair(r, Ray{from, t_.grid.point(*q) - from});
   }
 
-  void check(const ExactRay& r, std::span<const Hit> proposed, Tally& tally) {
+  // `sampled`: search this ray exhaustively whatever Embree proposed.
+  void check(const ExactRay& r, const Ray& approx, std::span<const Hit> proposed, bool sampled, Tally& tally) {
     hits_.clear();
+    std::uint64_t refused = 0;
     for (const Hit& h : proposed) {
       if (auto e = exact_hit(t_.fragments[h.fragment], h.fragment, r)) hits_.push_back(std::move(*e));
-      else ++tally.refused;
+      else ++refused;
     }
+    tally.refused += refused;
+    if (sampled || refused > 0) recover(r, approx, proposed, tally);
     std::sort(hits_.begin(), hits_.end(), [](const ExactHit& a, const ExactHit& b) {
       const int c = compare(a, b);
       return c != 0 ? c < 0 : a.fragment < b.fragment;
@@ -125,6 +171,21 @@ class ViewCheck {
   }
 
  private:
+  // Every fragment the ray meets, decided exactly, added to the hits where Embree did not propose
+  // it: a ray meeting a plane at a grazing angle can lose its candidate in floats.
+  void recover(const ExactRay& r, const Ray& approx, std::span<const Hit> proposed, Tally& tally) {
+    ++tally.exhaustive_rays;
+    proposed_.assign(t_.fragments.size(), false);
+    for (const Hit& h : proposed) proposed_[h.fragment] = true;
+    for (std::uint32_t f = 0; f < t_.fragments.size(); ++f) {
+      if (proposed_[f] || !ray_meets_box(approx.origin, approx.dir, boxes_[f])) continue;
+      if (auto e = exact_hit(t_.fragments[f], f, r)) {
+        hits_.push_back(std::move(*e));
+        ++tally.recovered;
+      }
+    }
+  }
+
   bool same_plane(std::uint32_t a, std::uint32_t b) const {
     return PlanePool::coplanar(t_.tree.fragment_plane[a], t_.tree.fragment_plane[b]);
   }
@@ -133,6 +194,8 @@ class ViewCheck {
   GridPoint eye_;
   std::vector<std::uint32_t> pos_;
   std::vector<ExactHit> hits_;
+  std::vector<bool> proposed_;
+  const std::vector<Box>& boxes_;
 };
 
 // One view: its rays in batches over the threads; counts are sums and set sizes, the same on any
@@ -144,7 +207,8 @@ void check_view(const ExactTree& t, const EmbreeScene& scene, const std::vector<
   const double reach = std::max(t.tree.bounds.diagonal(), 1e-300);
   std::vector<ExactRay> exact;
   std::vector<Ray> rays;
-  ViewCheck probe(t, eye, order);
+  const std::vector<Box> boxes = recover_boxes(fragments, t.tree.bounds);
+  ViewCheck probe(t, eye, order, boxes);
   for (const Ray& r : validation_rays(fragments, t.tree.bounds, eye_point, settings))
     if (auto pair = probe.ray_to(eye_point + r.dir * (reach / std::max(length(r.dir), 1e-300)))) {
       exact.push_back(pair->first);
@@ -155,14 +219,15 @@ void check_view(const ExactTree& t, const EmbreeScene& scene, const std::vector<
 #pragma omp parallel
   {
     Tally mine;
-    ViewCheck view(t, eye, order);
+    ViewCheck view(t, eye, order, boxes);
     HitBatch batch;
 #pragma omp for schedule(dynamic, 1) nowait
     for (std::int64_t b = 0; b < batches; ++b) {
       const std::size_t first = static_cast<std::size_t>(b) * kRaysPerBatch;
       const std::size_t count = std::min(kRaysPerBatch, rays.size() - first);
       scene.all_hits(std::span<const Ray>(rays).subspan(first, count), batch);
-      for (std::size_t i = 0; i < count; ++i) view.check(exact[first + i], batch.of(i), mine);
+      for (std::size_t i = 0; i < count; ++i)
+        view.check(exact[first + i], rays[first + i], batch.of(i), (first + i) % kExhaustiveEvery == 0, mine);
       compact_if_due(mine.checked, mine.compact_checked_at);
       compact_if_due(mine.violating, mine.compact_violating_at);
     }
@@ -177,6 +242,8 @@ void check_view(const ExactTree& t, const EmbreeScene& scene, const std::vector<
       all.coplanar += mine.coplanar;
       all.touching += mine.touching;
       all.refused += mine.refused;
+      all.exhaustive_rays += mine.exhaustive_rays;
+      all.recovered += mine.recovered;
     }
   }
   sort_unique(all.checked);
@@ -191,6 +258,8 @@ void check_view(const ExactTree& t, const EmbreeScene& scene, const std::vector<
   r.ties_coplanar += all.coplanar;
   r.ties_edge += all.touching;
   out.refused += all.refused;
+  out.exhaustive_rays += all.exhaustive_rays;
+  out.recovered += all.recovered;
   for (std::uint64_t k : all.violating) {
     if (r.first_problems.size() >= OrderCheck::kMaxReported) break;
     r.first_problems.push_back("view " + std::to_string(view) + ": fragments " + std::to_string(k >> 32) + " and " +
@@ -222,6 +291,8 @@ ExactValidationReport validate_exact_tree(const ExactTree& t, const ValidationSe
 nlohmann::json to_json(const ExactValidationReport& r) {
   nlohmann::json out = to_json(r.report);
   out["refused_hits"] = r.refused;
+  out["exhaustive_rays"] = r.exhaustive_rays;
+  out["recovered_hits"] = r.recovered;
   out["eyes_beyond"] = r.eyes_beyond;
   return out;
 }

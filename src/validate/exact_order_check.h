@@ -14,8 +14,10 @@
 //    multiplication. Equal parameters are the only ties: the same point of the ray on two
 //    fragments, either coplanar (the same support plane: overlapping there, or two pieces sharing
 //    an edge the ray crosses) or touching there.
-// A fragment the ray meets that neither Embree nor the double test proposes is not checked; none is
-// recovered by an exhaustive search yet.
+// A fragment the ray meets that Embree does not propose (at a grazing angle a candidate can be lost
+// in floats) is recovered by an exhaustive search, as the occlusion check does: on every ray where
+// a proposal was refused (the sign of a ray grazing a boundary) and on every 64th ray of a view,
+// every fragment is tested exactly and the hits Embree missed join the ray's (`recovered`).
 // Widths: |E|, |D| < 2^53 (tree/exact_traverse.h: kEyeBits), coefficients below 2^83 (normals)
 // and 2^125 (offsets), so S(E) and A . D are below 2^138 and their cross products below 2^277:
 // WideInt<5> (320 bits) holds every value exactly.
@@ -36,6 +38,8 @@ struct ExactValidationReport {
   // ties_boundary always 0 and plane_eps 0.
   ValidationReport report;
   std::uint64_t refused = 0;  // proposals the double test accepted and the exact test refuses
+  std::uint64_t exhaustive_rays = 0;  // rays searched exhaustively (every fragment tested exactly)
+  std::uint64_t recovered = 0;        // exact hits on those rays that Embree did not propose
   std::uint64_t eyes_beyond = 0;  // eyes beyond the grid's eye range, not checked
 };
 
