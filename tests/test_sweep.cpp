@@ -395,6 +395,16 @@ TEST(SweepSuites, MergeKernelsJoinTheKeyOnlyWhenExact) {
   EXPECT_FALSE(floating.identity().contains("kernel"));
   EXPECT_EQ(exact.identity()["kernel"], "exact");
   EXPECT_NE(exact.identity()["command"].get<std::string>().find("--kernel exact"), std::string::npos);
+  // Both run and record their proofs: the exact one with its volume equal to CGAL's exact one.
+  const nlohmann::json report = sweep_once(suite_of(R"({"name": "m", "merges": [{"pairs": ["spheres"], "heuristics": ["first"],
+      "ops": ["union"], "sizes": [50], "seeds": [1], "points": 10, "kernels": ["float", "exact"]}]})"));
+  EXPECT_EQ(report["summary"]["failures"], 0) << report["failures"].dump();
+  ASSERT_EQ(report["runs"].size(), 2u);
+  for (const auto& run : report["runs"])
+    if (run["id"].contains("kernel")) {
+      EXPECT_EQ(run["validation"]["volume_equal"], true);
+      EXPECT_EQ(run["invariants"]["border_edges"], 0);
+    }
   try {
     jobs_of(R"(, "kernels": ["fixed"])");
     FAIL() << "an unknown kernel was accepted";

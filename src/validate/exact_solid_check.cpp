@@ -88,6 +88,7 @@ ExactSolidCheck check_exact_set_operation(const ExactSolidTree& result, const Ex
   try {
     const ExactCorefine r = exact_corefine(snapped_corners(a, space.grid()), snapped_corners(b, space.grid()), op);
     c.corefine_volume = r.volume;
+    c.corefine_volume_scene = r.volume_double * step * step * step;
     c.corefine_seconds = r.seconds;
   } catch (const std::runtime_error& e) {
     c.corefine_error = e.what();
@@ -103,6 +104,7 @@ nlohmann::json to_json(const ExactSolidCheck& c) {
           {"compared", c.compared},
           {"mismatches", c.mismatches},
           {"tree_volume", c.volume},
+          {"corefine_volume", c.corefine_volume_scene},
           {"volume_exact", c.boundary.volume},
           {"corefine_volume_exact", c.corefine_volume},
           {"volume_equal", c.volume_equal()},

@@ -28,6 +28,7 @@ struct ExactSolidCheck {
   ExactBoundaryCheck boundary;   // the result's boundary: closure and volume, exact, in grid units
   double volume = 0;             // the boundary's volume in scene units (rounded)
   std::string corefine_volume;   // CGAL's, exact, in grid units (canonical text; empty on error)
+  double corefine_volume_scene = 0;  // the same rounded, in scene units
   double corefine_seconds = 0;
   std::string corefine_error;    // why CGAL gave no volume (then the volume check fails)
   bool volume_equal() const { return corefine_error.empty() && boundary.volume == corefine_volume; }

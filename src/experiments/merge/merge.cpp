@@ -270,6 +270,9 @@ json exact_operand_metrics(const ExactSetOperationRun& run) {
 // them (validate/exact_solid_check.h): border edges are the boundary's exact border segments, and
 // the volume check is equality of rationals. A rational's text runs to thousands of digits, so the
 // record keeps its length and a hash (`bspbench merge --kernel exact --json` prints it whole).
+constexpr JsonField kExactInvariantFields[] = {{"border_edges", "/boundary/border_edges"},
+                                               {"boundary_volume", "/boundary/volume"}};
+
 void exact_volumes(const ExactSolidCheck& c, json& validation) {
   validation["volume_equal"] = c.volume_equal();
   for (const auto& [name, text] : {std::pair{"volume_exact", &c.boundary.volume},
@@ -321,7 +324,7 @@ json MergeJob::run_exact(const RunContext& context, const Scene& a, const Scene&
   split_timings(metrics, timings, "", kTimings);
   pick_fields(check, kCheckMetricFields, metrics);
   json invariants = json::object();
-  pick_fields(check, kInvariantFields, invariants);
+  pick_fields(check, kExactInvariantFields, invariants);
   invariants["violations"] = run.check.boundary.border_segments;
   json validation = json::object();
   pick_fields(check, kValidationFields, validation);
