@@ -1,6 +1,8 @@
 #include "experiments/kernel/kernel.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <iostream>
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +12,7 @@
 #include "common/rng.h"
 #include "experiments/reference_build.h"
 #include "geometry/snap.h"
+#include "mesh_scenes.h"
 #include "metrics/kernel_stats.h"
 #include "metrics/tree_metrics.h"
 #include "tree/build.h"
@@ -164,11 +167,25 @@ namespace {
 
 std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, const std::string& path) {
   r.expect(j, j.is_object(), path, "an object");
-  r.check_keys(j, path, {"scenes", "sizes", "heuristics", "seeds", "views", "plane_eps", "perturbations"});
+  r.check_keys(j, path, {"scenes", "meshes", "sizes", "heuristics", "seeds", "views", "plane_eps", "perturbations"});
   auto b = std::make_unique<KernelBlock>();
   std::vector<const GeneratorInfo*> sized;
-  b->scenes = r.generator_names(r.required(j, path, "scenes"), child(path, "scenes"), "kernel comparison", sized);
-  b->sizes = r.generator_sizes(j, path, sized);
+  const json* meshes = r.optional(j, "meshes");
+  if (meshes) {
+    const auto cached = available_meshes();
+    for (const auto& name : r.names(*meshes, child(path, "meshes"), "leave \"meshes\" out for none", [](const std::string& name) {
+           if (!is_mesh_scene(name)) throw UsageError("'" + name + "' is not a mesh:NAME scene");
+         })) {
+      if (std::any_of(cached.begin(), cached.end(), [&](const MeshEntry& m) { return "mesh:" + m.name == name; }))
+        b->meshes.push_back(name);
+      else
+        std::cerr << "kernels: " << name << " is not in the mesh cache (generators/fetch_meshes.sh); skipped\n";
+    }
+  }
+  if (!meshes || r.optional(j, "scenes")) {
+    b->scenes = r.generator_names(r.required(j, path, "scenes"), child(path, "scenes"), "kernel comparison", sized);
+    b->sizes = r.generator_sizes(j, path, sized);
+  }
   if (const json* h = r.optional(j, "heuristics")) b->heuristics = r.heuristics(*h, child(path, "heuristics"));
   b->seeds = r.seeds(j, path);
   if (const json* v = r.optional(j, "views")) b->views = static_cast<std::uint32_t>(r.integer(*v, child(path, "views"), 1, kMaxViews));
@@ -188,6 +205,16 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
 
 Jobs KernelBlock::expand() const {
   Jobs out;
+  for (const auto& name : meshes) {
+    const std::string path = mesh_scene_path(name);
+    const SceneFile file{path, file_hash(path)};
+    for (const auto& h : choices_or_all(heuristics))
+      for (auto seed : seeds)
+        for (double eps : plane_eps)
+          for (double noise : perturbations)
+            out.push_back(std::make_shared<KernelJob>(SceneRun{name, {}, file, h, Shape::Strict, seed, 0, views}, eps,
+                                                      noise));
+  }
   for (const auto& name : scenes) {
     const GeneratorInfo& g = find_generator(name);
     for (auto n : sizes_in_range(g, sizes))

@@ -43,6 +43,10 @@ inline constexpr std::size_t kClassifyPlanes = 64;
 
 struct KernelBlock final : Block {
   std::vector<std::string> scenes;
+  // mesh:NAME scenes, each run once per heuristic, seed and setting; one not in the mesh cache is
+  // skipped with a line on stderr (the cache is filled by generators/fetch_meshes.sh), so a suite
+  // naming meshes runs where none were fetched.
+  std::vector<std::string> meshes;
   std::vector<std::uint64_t> sizes;
   std::vector<std::string> heuristics;  // empty: every registered heuristic
   std::vector<std::uint64_t> seeds;
