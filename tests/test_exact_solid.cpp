@@ -210,6 +210,37 @@ TEST(ExactMerge, SameInputsGiveTheSameTreeBitForBit) {
   }
 }
 
+TEST(ExactSolidInvariants, HoldForBuiltAndMergedTreesAndCatchPlantedBreaks) {
+  ExactPair p(scene("torus", {{"n", "300"}}), scene("torus", {{"n", "300"}, {"x", "0.6"}, {"seed", "3"}}));
+  for (const std::string h : {"first", "crystal", "halving", "naylor"}) {
+    const ExactSolidTree a = p.solid(p.a, h), b = p.solid(p.b, h);
+    EXPECT_EQ(check_exact_solid(a, *p.space), "") << h;
+    for (SetOp op : kOps) EXPECT_EQ(check_exact_solid(merge(a, b, *p.space, op), *p.space), "") << h;
+  }
+  ExactSolidTree t = p.solid(p.a, "crystal");
+  ASSERT_GT(t.nodes.size(), 3u);
+  ExactSolidTree swapped = t;  // a child's sub-hyperplane under its parent: on another plane
+  std::swap(swapped.shp[0], swapped.shp[1]);
+  EXPECT_NE(check_exact_solid(swapped, *p.space), "");
+  ExactSolidTree twin = t;  // a child on its parent's plane
+  const Ref child = !is_leaf(twin.nodes[0].front) ? twin.nodes[0].front : twin.nodes[0].back;
+  twin.nodes[child].plane = PlanePool::flip(twin.nodes[0].plane);
+  EXPECT_NE(check_exact_solid(twin, *p.space), "");
+  ExactSolidTree cycle = t;
+  cycle.nodes[child].front = 0;
+  EXPECT_NE(check_exact_solid(cycle, *p.space), "");
+}
+
+// The timing loop merges again and again in one space: discarding a result gives back what it took.
+TEST(ExactMerge, DiscardingAResultReturnsItsSubHyperplanes) {
+  ExactPair p(scene("sphere", {{"n", "300"}}), scene("sphere", {{"n", "300"}, {"x", "0.5"}}));
+  const ExactSolidTree a = p.solid(p.a, "crystal"), b = p.solid(p.b, "crystal");
+  discard(merge(a, b, *p.space, SetOp::Union), a, b, *p.space);
+  const std::size_t live = p.space->shps().rounded().vertices_live();
+  for (int i = 0; i < 3; ++i) discard(merge(a, b, *p.space, SetOp::Union), a, b, *p.space);
+  EXPECT_EQ(p.space->shps().rounded().vertices_live(), live);
+}
+
 TEST(ExactMergeCheck, CatchesAFlippedLeafLabel) {
   ExactPair p(scene("sphere", {{"n", "400"}}), scene("sphere", {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}}));
   const ExactSolidTree a = p.solid(p.a, "naylor"), b = p.solid(p.b, "naylor");

@@ -33,6 +33,8 @@ def by_pair(report):
     """Pair -> operation -> its merge aggregates (one per heuristic), in the order of OPERATIONS."""
     pairs = {}
     for agg in aggregates_of(report, "merge"):
+        if agg.get("kernel"):  # the exact kernel's merges are the kernel section's
+            continue
         pairs.setdefault(agg["scene"], {}).setdefault(agg["operation"], []).append(agg)
     return {p: {op: ops[op] for op in OPERATIONS if op in ops} for p, ops in sorted(pairs.items())}
 

@@ -13,6 +13,7 @@
 #include "cli/run_args.h"
 #include "common/errors.h"
 #include "solid/boundary.h"
+#include "experiments/merge/set_operation.h"
 #include "solid/exact_solid_tree.h"
 #include "solid/solid_build.h"
 #include "split/registry.h"
@@ -61,6 +62,7 @@ int run(Args& args) {
   answers.reserve(points.size());
   if (*kernel == Kernel::Exact) {
     const auto space = ExactSolidSpace::for_box(box);
+    experiments::require_snapped_solid(scene, space->grid());
     const ExactSolidTree solid = build_exact_solid(scene.polygons, *splitter, *space).solid;
     for (const Vec3& p : points) {
       const auto q = space->grid().snap(p);
@@ -81,16 +83,11 @@ int run(Args& args) {
     else text += std::string(names[c]) + "\n";
   }
   if (json) {
-    std::cout << nlohmann::json{{"solid", scene.name},
-                                {"heuristic", heuristic},
-                                {"kernel", kernel_name(*kernel)},
-                                {"points", points.size()},
-                                {"in", counts[1]},
-                                {"out", counts[0]},
-                                {"on", counts[2]},
-                                {"classes", classes}}
-                     .dump()
-              << "\n";
+    nlohmann::json out{{"solid", scene.name}, {"heuristic", heuristic},   {"points", points.size()},
+                       {"in", counts[1]},      {"out", counts[0]},           {"on", counts[2]},
+                       {"classes", classes}};
+    if (*kernel != Kernel::Float) out["kernel"] = kernel_name(*kernel);
+    std::cout << out.dump() << "\n";
   } else {
     std::cout << text;
   }

@@ -240,9 +240,9 @@ class ExactMerger {
 }  // namespace
 
 ExactSolidTree reduce(const ExactSolidTree& solid) {
-  // 1. Each reachable node's replacement: a leaf when both its children's are that leaf. A node
-  // may be reached from several parents (partitioning shares unchanged subtrees), so each is
-  // resolved once, children before parents.
+  // 1. Each reachable node's replacement: a leaf when both its children's are that leaf, resolved
+  // children before parents, each node once (merging makes a tree, but a caller's array may share
+  // a subtree between parents, and this walk stays linear then).
   constexpr Ref kUnresolved = 0x7fffffff;
   std::vector<Ref> to(solid.nodes.size(), kUnresolved);
   const auto resolved = [&](Ref r) { return is_leaf(r) ? r : to[r]; };

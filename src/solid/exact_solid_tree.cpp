@@ -27,12 +27,15 @@ GridPlane box_face(int axis, bool high, const GridBox& box) {
 
 }  // namespace
 
-ExactSolidSpace::ExactSolidSpace(const Grid& grid, const GridBox& box) : box_(box), pool_(grid), shps_(pool_) {
+ExactSolidSpace::ExactSolidSpace(const Grid& grid, const GridBox& box)
+    : box_(box), pool_(grid), shps_(pool_, kReusedSpan) {
   for (int axis = 0; axis < 3; ++axis)
     for (const bool high : {false, true}) box_planes_[2 * axis + high] = pool_.add(box_face(axis, high, box));
 }
 
 std::unique_ptr<ExactSolidSpace> ExactSolidSpace::for_box(const Box& box) {
+  if (box.empty() || !is_finite(box.lo) || !is_finite(box.hi))
+    throw std::invalid_argument("an exact solid space needs a finite, non-empty box");
   const Grid grid = Grid::for_box(box);
   // Every point of the box is in the grid's range (grid.h); one step outwards keeps the rounded
   // corners around the box, and is still in range (the range has more than 2^39 steps to spare).
@@ -61,15 +64,15 @@ std::uint32_t ExactSolidSpace::plane_in_box(std::uint32_t plane) {
   return id == kNone ? kNone : clip(id, box_plane(k, true));
 }
 
-std::uint32_t ExactSolidSpace::clip(std::uint32_t id, std::uint32_t plane, bool keep) {
+std::uint32_t ExactSolidSpace::clip(std::uint32_t id, std::uint32_t plane) {
   switch (shps_.classify(id, plane)) {
     case Side::Front:
     case Side::Coplanar: return id;
     case Side::Back:
-      if (!keep) shps_.release(id);
+      shps_.release(id);
       return kNone;
     case Side::Spanning: {
-      const ExactFragments::Parts parts = shps_.split(id, plane, keep);
+      const ExactFragments::Parts parts = shps_.split(id, plane);
       shps_.release(parts.back);
       return parts.front;
     }
@@ -78,6 +81,7 @@ std::uint32_t ExactSolidSpace::clip(std::uint32_t id, std::uint32_t plane, bool 
 }
 
 Ref ExactSolidTree::add_node(std::uint32_t plane, std::uint32_t shp_id, Ref front, Ref back) {
+  if (nodes.size() >= 0x7ffffffeu) throw std::length_error("an exact solid tree has more than 2^31 - 2 nodes");
   nodes.push_back({plane, front, back});
   shp.push_back(shp_id);
   return static_cast<Ref>(nodes.size() - 1);
@@ -185,6 +189,38 @@ PointClass classify_point(const ExactSolidTree& solid, const ExactSolidSpace& sp
 }
 
 SolidSize solid_size(const ExactSolidTree& solid) { return solid_size_of(solid.nodes, solid.root); }
+
+std::string check_exact_solid(const ExactSolidTree& solid, ExactSolidSpace& space) {
+  if (solid.shp.size() != solid.nodes.size()) return "sub-hyperplanes and nodes differ in number";
+  struct Item {
+    Ref node;
+    std::uint32_t depth;
+    std::uint32_t towards;
+  };
+  std::vector<Item> stack;
+  std::vector<std::uint32_t> path;
+  if (!is_leaf(solid.root)) stack.push_back({solid.root, 0, 0});
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    if (item.node < 0 || static_cast<std::size_t>(item.node) >= solid.nodes.size())
+      return "a link past the nodes: " + std::to_string(item.node);
+    if (item.depth > solid.nodes.size()) return "a cycle through node " + std::to_string(item.node);  // else endless
+    path.resize(item.depth);
+    if (item.depth > 0) path.back() = item.towards;
+    const ExactSolidNode& n = solid.nodes[item.node];
+    const std::string at = "node " + std::to_string(item.node) + ": ";
+    if (space.shps().plane(solid.shp[item.node]) != n.plane) return at + "its sub-hyperplane lies on another plane";
+    for (const std::uint32_t p : path) {
+      if (PlanePool::coplanar(p, n.plane)) return at + "an ancestor has its plane";
+      const Side s = space.shps().classify(solid.shp[item.node], p);
+      if (s != Side::Front) return at + "its sub-hyperplane reaches behind an ancestor's plane";
+    }
+    if (!is_leaf(n.back)) stack.push_back({n.back, item.depth + 1, PlanePool::flip(n.plane)});
+    if (!is_leaf(n.front)) stack.push_back({n.front, item.depth + 1, n.plane});
+  }
+  return {};
+}
 
 namespace {
 

@@ -8,7 +8,7 @@
 // h(v) ∩ r(v). Trees live in a space (ExactSolidSpace): one grid, one ± plane pool, one store of
 // plane polygons; trees of one space can be merged (exact_merge.h), and share sub-hyperplanes by id.
 //
-// Invariants, exact (validate with exact_solid_invariants): shp(v) is h(v) ∩ r(v), a polygon of
+// Invariants, exact (check_exact_solid below): shp(v) is h(v) ∩ r(v), a polygon of
 // positive area; no node's plane is an ancestor's plane in either orientation (a strict tree puts
 // every face of a plane at the first node on it, and merging removes a coplanar node where it meets
 // its twin). Hence no sub-hyperplane is ever empty, and the tolerances of the float solids vanish:
@@ -17,6 +17,7 @@
 // node whose plane misses its region (none does).
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "geometry/grid.h"
@@ -54,9 +55,12 @@ class ExactSolidSpace {
   // misses the box's interior.
   std::uint32_t plane_in_box(std::uint32_t plane);
   // Keeps the part of polygon `id` in front of pooled plane `plane`: the id itself, a new part (the
-  // old id released unless keep), or kNone when nothing is in front. A polygon on the plane (either
-  // orientation) is kept whole.
-  std::uint32_t clip(std::uint32_t id, std::uint32_t plane, bool keep = false);
+  // old id released), or kNone when nothing is in front (released too). A polygon on the plane
+  // (either orientation) is kept whole.
+  std::uint32_t clip(std::uint32_t id, std::uint32_t plane);
+  // Freed vertex runs the store reuses: a sub-hyperplane clipped by every ancestor reaches dozens
+  // of vertices, more than a build's fragments.
+  static constexpr std::uint32_t kReusedSpan = 256;
 
  private:
   GridBox box_;
@@ -77,8 +81,15 @@ struct ExactSolidTree {
   std::vector<std::uint32_t> shp;  // parallel to nodes: the sub-hyperplane's id in the space's store
   Ref root = kOut;
 
+  // Throws std::length_error past 2^31 - 2 nodes (a Ref's range; reduce marks with 2^31 - 1).
   Ref add_node(std::uint32_t plane, std::uint32_t shp_id, Ref front, Ref back);
 };
+
+// The invariants above, decided exactly, for tests and for trees a caller edited: every reachable
+// node's sub-hyperplane lies on its plane (its support is the node's pooled plane), in front of or
+// on every ancestor's half-space towards the node, and no ancestor has its plane in either
+// orientation. Returns the first broken one as text, or an empty string.
+std::string check_exact_solid(const ExactSolidTree& solid, ExactSolidSpace& space);
 
 // A strict exact tree of a closed, outward-facing mesh as a solid tree of the space, labelled as
 // solid_from_tree does (outside in front of a face, inside behind it), facing decided by pooled

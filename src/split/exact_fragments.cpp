@@ -83,7 +83,7 @@ std::uint32_t ExactFragments::new_span(std::uint32_t count) {
 }
 
 void ExactFragments::free_span(std::uint32_t first, std::uint32_t count) {
-  if (count > FragmentStore::kReusedSpan) return;  // rare, as in FragmentStore
+  if (count > reused_span_) return;  // rare, as in FragmentStore
   if (free_spans_.size() <= count) free_spans_.resize(count + 1);
   free_spans_[count].push_back(first);
 }
@@ -155,16 +155,6 @@ std::uint32_t ExactFragments::add_pooled(std::uint32_t support, std::span<const 
     corner_[first + i] = kNoCorner;
   }
   return store(s, support, source, first, k);
-}
-
-void ExactFragments::pooled_bounds(std::uint32_t id, std::vector<std::uint32_t>& out) const {
-  const Record& r = rec_[id];
-  out.clear();
-  for (std::uint32_t i = 0; i < r.count; ++i) {
-    const PlaneRef b = bound_[r.first + i];
-    if (!(b & kPooled)) throw std::logic_error("pooled_bounds of a fragment with an input plane");
-    out.push_back(b & ~kPooled);
-  }
 }
 
 void ExactFragments::release(std::uint32_t id) {

@@ -44,7 +44,12 @@ struct ExactSideCounters {
 
 class ExactFragments {
  public:
-  explicit ExactFragments(GridPlanePool& planes) : planes_(planes) {}
+  // Freed vertex runs of up to `reused_span` vertices are reused (FragmentStore::kReusedSpan by
+  // default; a solid tree's sub-hyperplanes, clipped by every ancestor, reach dozens).
+  explicit ExactFragments(GridPlanePool& planes, std::uint32_t reused_span = FragmentStore::kReusedSpan)
+      : planes_(planes), reused_span_(reused_span) {
+    rounded_.reuse_spans_up_to(reused_span);
+  }
 
   // Room for this many fragments and vertices (FragmentStore::reserve), of which `input_vertices`
   // given to add(): reserved pages cost nothing until written, and the arrays never copy what they
@@ -77,8 +82,6 @@ class ExactFragments {
     std::uint32_t front = FragmentStore::kNone, back = FragmentStore::kNone;
   };
   Parts split(std::uint32_t id, std::uint32_t plane, bool keep_parent = false);
-  // The pooled bound planes of a fragment whose bounds are all pooled (add_pooled and its splits).
-  void pooled_bounds(std::uint32_t id, std::vector<std::uint32_t>& out) const;
 
   const ExactSideCounters& counters() const { return counters_; }
 
@@ -139,6 +142,7 @@ class ExactFragments {
                       std::uint32_t count);
 
   GridPlanePool& planes_;
+  std::uint32_t reused_span_;
   FragmentStore rounded_;
   // The input's planes as given (a support is not replaced by the pool's canonical multiple: the
   // vertices, cofactors and output are computed from the polygon's own planes), and their roundings.

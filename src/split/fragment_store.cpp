@@ -75,7 +75,7 @@ std::uint32_t FragmentStore::add(const FragmentView& f, std::uint32_t plane, con
 void FragmentStore::release(std::uint32_t id) {
   const Span s = span_[id];
   live_vertices_ -= s.count;
-  if (s.count <= kReusedSpan) {
+  if (s.count <= reused_span_) {
     if (free_spans_.size() <= s.count) free_spans_.resize(s.count + 1);
     free_spans_[s.count].push_back(s.first);
   }

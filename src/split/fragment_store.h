@@ -36,9 +36,9 @@ struct SideCounts {
 class FragmentStore {
  public:
   static constexpr std::uint32_t kNone = 0xffffffffu;  // no fragment (a part split() dropped)
-  // Freed spans of more vertices than this are not reused: fragments that large are rare (a solid
-  // tree's sub-hyperplanes, clipped by every ancestor, reach dozens of vertices).
-  static constexpr std::uint32_t kReusedSpan = 256;
+  // Freed spans of more vertices than this are not reused: fragments that large are rare (a store
+  // whose polygons grow larger says so with reuse_spans_up_to).
+  static constexpr std::uint32_t kReusedSpan = 16;
   // A store made for a known set of fragments reserves room for this many times as many (splits
   // add fragments): reserved pages cost nothing until written, and a store that has to grow
   // copies everything it holds.
@@ -50,6 +50,8 @@ class FragmentStore {
   // Texture coordinates are kept only when `tex_coords` (some input vertex has non-zero ones).
   FragmentStore() = default;
   explicit FragmentStore(bool tex_coords) : tex_(tex_coords) {}
+  // Reuse freed spans of up to `count` vertices instead of kReusedSpan.
+  void reuse_spans_up_to(std::uint32_t count) { reused_span_ = count; }
   bool has_tex_coords() const { return tex_; }
 
   std::uint32_t add(const Polygon& poly, std::uint32_t plane, const BoundingSphere& sphere);
@@ -118,6 +120,7 @@ class FragmentStore {
   Span new_span(std::uint32_t count);
 
   bool tex_ = false;
+  std::uint32_t reused_span_ = kReusedSpan;
   PageVector<Vec3> pos_;
   PageVector<TexCoord> uv_;  // parallel to pos_ when tex_, else empty
   PageVector<Span> span_;    // per id

@@ -18,9 +18,14 @@ constexpr std::size_t kRaysPerBatch = 64;
 // A thread's pair keys are sorted and deduplicated once they exceed this many, which bounds memory
 // on views whose rays cross many fragments (as the float check does, order_check.cpp).
 constexpr std::size_t kCompactAt = std::size_t{1} << 22;
-// Every this many rays of a view is also searched exhaustively (exact_order_check.h), besides the
-// rays where a proposal was refused.
+// Every this many rays of a view (or fewer, under kRecoverBudget) is also searched exhaustively
+// (exact_order_check.h), besides the rays where a proposal was refused.
 constexpr std::size_t kExhaustiveEvery = 64;
+// Fragment tests each kind of search (sampled rays, rays with a refusal) may spend per view: where
+// rays and fragments are many (saddle-grid with halving: 2.4 * 10^5 fragments, 10^6 refusals), only
+// every stride-th ray qualifies, a stride chosen from the view's rays and fragments, so the search
+// costs about a second at most and the same rays are searched on any thread count.
+constexpr double kRecoverBudget = 0x1p26;
 // The exhaustive search skips a fragment whose bounding box, grown by this much of the scene's
 // extent (diagonal plus the largest coordinate's magnitude), the ray misses in doubles. The view's
 // vertices lie within a few units in the last place of the exact ones, and the slab test rounds a
@@ -141,8 +146,10 @@ class ViewCheck {
     return std::pair(r, Ray{from, t_.grid.point(*q) - from});
   }
 
-  // `sampled`: search this ray exhaustively whatever Embree proposed.
-  void check(const ExactRay& r, const Ray& approx, std::span<const Hit> proposed, bool sampled, Tally& tally) {
+  // `sampled`: search this ray exhaustively whatever Embree proposed; `may_search`: search it if a
+  // proposal is refused.
+  void check(const ExactRay& r, const Ray& approx, std::span<const Hit> proposed, bool sampled, bool may_search,
+             Tally& tally) {
     hits_.clear();
     std::uint64_t refused = 0;
     for (const Hit& h : proposed) {
@@ -150,7 +157,7 @@ class ViewCheck {
       else ++refused;
     }
     tally.refused += refused;
-    if (sampled || refused > 0) recover(r, approx, proposed, tally);
+    if (sampled || (refused > 0 && may_search)) recover(r, approx, proposed, tally);
     std::sort(hits_.begin(), hits_.end(), [](const ExactHit& a, const ExactHit& b) {
       const int c = compare(a, b);
       return c != 0 ? c < 0 : a.fragment < b.fragment;
@@ -215,6 +222,10 @@ void check_view(const ExactTree& t, const EmbreeScene& scene, const std::vector<
       rays.push_back(pair->second);
     }
   Tally all;
+  // Each kind of search spends at most about kRecoverBudget fragment tests on the view.
+  const double thinning = std::ceil(static_cast<double>(rays.size()) * static_cast<double>(fragments.size()) / kRecoverBudget);
+  const auto stride = static_cast<std::size_t>(std::max(1.0, thinning));
+  const auto sample_every = std::max(kExhaustiveEvery, stride);
   const auto batches = static_cast<std::int64_t>((rays.size() + kRaysPerBatch - 1) / kRaysPerBatch);
 #pragma omp parallel
   {
@@ -227,7 +238,8 @@ void check_view(const ExactTree& t, const EmbreeScene& scene, const std::vector<
       const std::size_t count = std::min(kRaysPerBatch, rays.size() - first);
       scene.all_hits(std::span<const Ray>(rays).subspan(first, count), batch);
       for (std::size_t i = 0; i < count; ++i)
-        view.check(exact[first + i], rays[first + i], batch.of(i), (first + i) % kExhaustiveEvery == 0, mine);
+        view.check(exact[first + i], rays[first + i], batch.of(i), (first + i) % sample_every == 0,
+                   (first + i) % stride == 0, mine);
       compact_if_due(mine.checked, mine.compact_checked_at);
       compact_if_due(mine.violating, mine.compact_violating_at);
     }

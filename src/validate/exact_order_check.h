@@ -15,8 +15,9 @@
 //    fragments, either coplanar (the same support plane: overlapping there, or two pieces sharing
 //    an edge the ray crosses) or touching there.
 // A fragment the ray meets that Embree does not propose (at a grazing angle a candidate can be lost
-// in floats) is recovered by an exhaustive search, as the occlusion check does: on every ray where
-// a proposal was refused (the sign of a ray grazing a boundary) and on every 64th ray of a view,
+// in floats) is recovered by an exhaustive search, as the occlusion check does: on rays where a
+// proposal was refused (the sign of a ray grazing a boundary) and on every 64th ray of a view (both
+// thinned to every k-th where rays times fragments exceed a budget of fragment tests per view),
 // every fragment is tested exactly and the hits Embree missed join the ray's (`recovered`).
 // Widths: |E|, |D| < 2^53 (tree/exact_traverse.h: kEyeBits), coefficients below 2^83 (normals)
 // and 2^125 (offsets), so S(E) and A . D are below 2^138 and their cross products below 2^277:

@@ -148,6 +148,8 @@ KernelComparison compare_kernels(std::span<const Polygon> original, Splitter& fl
   m.update(order_counts("float", float_order));
   m.update(order_counts("exact", exact_order.report));
   m["exact_refused_hits"] = exact_order.refused;
+  m["exact_exhaustive_rays"] = exact_order.exhaustive_rays;
+  m["exact_recovered_hits"] = exact_order.recovered;
   m["plane_eps"] = tree.tol.plane_eps;
   m.update(classification_differences(exact, snapped, input, tree.tol.plane_eps));
   const json stats = to_json(exact.exact);
@@ -182,6 +184,7 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
         std::cerr << "kernels: " << name << " is not in the mesh cache (generators/fetch_meshes.sh); skipped\n";
     }
   }
+  if (meshes && !r.optional(j, "scenes") && r.optional(j, "sizes")) r.fail(path, "\"sizes\" without \"scenes\": meshes take no size");
   if (!meshes || r.optional(j, "scenes")) {
     b->scenes = r.generator_names(r.required(j, path, "scenes"), child(path, "scenes"), "kernel comparison", sized);
     b->sizes = r.generator_sizes(j, path, sized);

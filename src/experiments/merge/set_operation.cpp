@@ -44,6 +44,16 @@ SetOperationRun run_set_operation(const Scene& a, const Scene& b, SetOp op, Spli
   return run;
 }
 
+// Snapped, a closed mesh stays closed (equal vertices snap alike) unless a face collapsed; its faces
+// may come to meet, which only exact predicates on the snapped mesh can tell.
+void require_snapped_solid(const Scene& scene, const Grid& grid) {
+  const std::vector<Polygon> snapped = grid_unit_polygons(scene.polygons, grid);
+  require_closed_solid(snapped, 0.0, scene.name + " (snapped to the grid)");
+  if (const std::size_t n = ExactSolid(snapped).self_intersecting_pairs(); n > 0)
+    throw InputError(scene.name + ": not the boundary of a solid after snapping to the grid: " + std::to_string(n) +
+                     " pairs of faces intersect");
+}
+
 ExactSetOperationRun run_exact_set_operation(const Scene& a, const Scene& b, SetOp op, Splitter& splitter,
                                              const SolidCheckSettings& settings,
                                              const std::function<void(ExactSolidOperands&)>& after_merge) {
@@ -54,15 +64,8 @@ ExactSetOperationRun run_exact_set_operation(const Scene& a, const Scene& b, Set
   require_closed_solid(a.polygons, eps, a.name);
   require_closed_solid(b.polygons, eps, b.name);
   o.space = ExactSolidSpace::for_box(box);
-  for (const Scene* s : {&a, &b}) {
-    // Snapped, a closed mesh stays closed (equal vertices snap alike) unless a face collapsed;
-    // its faces may come to meet, which only exact predicates on the snapped mesh can tell.
-    const std::vector<Polygon> snapped = grid_unit_polygons(s->polygons, o.space->grid());
-    require_closed_solid(snapped, 0.0, s->name + " (snapped to the grid)");
-    if (const std::size_t n = ExactSolid(snapped).self_intersecting_pairs(); n > 0)
-      throw InputError(s->name + ": not the boundary of a solid after snapping to the grid: " + std::to_string(n) +
-                       " pairs of faces intersect");
-  }
+  require_snapped_solid(a, o.space->grid());
+  require_snapped_solid(b, o.space->grid());
   double start = thread_cpu_seconds();
   o.a = build_exact_solid(a.polygons, splitter, *o.space);
   o.a_cpu_seconds = thread_cpu_seconds() - start;
@@ -71,9 +74,7 @@ ExactSetOperationRun run_exact_set_operation(const Scene& a, const Scene& b, Set
   o.b_cpu_seconds = thread_cpu_seconds() - start;
   run.result = merge(o.a.solid, o.b.solid, *o.space, op, &run.stats);
   if (after_merge) after_merge(o);
-  const double boundary_start = thread_cpu_seconds();
   run.boundary = exact_solid_boundary(run.result, *o.space);
-  run.boundary_seconds = thread_cpu_seconds() - boundary_start;
   run.check = check_exact_set_operation(run.result, *o.space, run.boundary, a.polygons, b.polygons, op, settings);
   return run;
 }
