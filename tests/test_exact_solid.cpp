@@ -67,16 +67,6 @@ struct ExactPair {
   }
 };
 
-bool combine(SetOp op, bool in_a, bool in_b) {
-  switch (op) {
-    case SetOp::Union: return in_a || in_b;
-    case SetOp::Intersection: return in_a && in_b;
-    case SetOp::Difference: return in_a && !in_b;
-    case SetOp::SymmetricDifference: return in_a != in_b;
-  }
-  return false;
-}
-
 struct PointProof {
   int compared = 0, on_operand = 0, mismatches = 0;
 };
@@ -99,7 +89,7 @@ PointProof prove_points(const ExactSolidTree& r, const ExactPair& p, SetOp op, i
       continue;
     }
     ++proof.compared;
-    const bool truth = combine(op, sa == ExactSide::Inside, sb == ExactSide::Inside);
+    const bool truth = in_result(op, sa == ExactSide::Inside, sb == ExactSide::Inside);
     proof.mismatches += classify_point(r, *p.space, q) != (truth ? PointClass::In : PointClass::Out);
   }
   return proof;

@@ -14,16 +14,6 @@ namespace bsp {
 
 namespace {
 
-bool combine(SetOp op, bool in_a, bool in_b) {
-  switch (op) {
-    case SetOp::Union: return in_a || in_b;
-    case SetOp::Intersection: return in_a && in_b;
-    case SetOp::Difference: return in_a && !in_b;
-    case SetOp::SymmetricDifference: return in_a != in_b;
-  }
-  return false;
-}
-
 Vec3 as_vec(const GridPoint& q) { return {static_cast<double>(q.x), static_cast<double>(q.y), static_cast<double>(q.z)}; }
 
 GridPoint nearest(const Vec3& p) { return {std::llround(p.x), std::llround(p.y), std::llround(p.z)}; }
@@ -79,7 +69,7 @@ ExactSolidCheck check_exact_set_operation(const ExactSolidTree& result, const Ex
       continue;
     }
     ++c.compared;
-    const bool truth = combine(op, sa == ExactSide::Inside, sb == ExactSide::Inside);
+    const bool truth = in_result(op, sa == ExactSide::Inside, sb == ExactSide::Inside);
     c.mismatches += classify_point(result, space, q) != (truth ? PointClass::In : PointClass::Out);
   }
   c.boundary = check_exact_boundary(boundary);

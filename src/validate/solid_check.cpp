@@ -14,16 +14,6 @@ namespace bsp {
 
 namespace {
 
-bool combine(SetOp op, bool in_a, bool in_b) {
-  switch (op) {
-    case SetOp::Union: return in_a || in_b;
-    case SetOp::Intersection: return in_a && in_b;
-    case SetOp::Difference: return in_a && !in_b;
-    case SetOp::SymmetricDifference: return in_a != in_b;
-  }
-  return false;
-}
-
 // A point on a random face of the polygons (uniform in the face's fan triangle), pushed off it.
 Vec3 near_surface(std::span<const Polygon> polys, Rng& rng, double reach) {
   const Polygon& p = polys[rng.below(polys.size())];
@@ -36,6 +26,16 @@ Vec3 near_surface(std::span<const Polygon> polys, Rng& rng, double reach) {
 }
 
 }  // namespace
+
+bool in_result(SetOp op, bool in_a, bool in_b) {
+  switch (op) {
+    case SetOp::Union: return in_a || in_b;
+    case SetOp::Intersection: return in_a && in_b;
+    case SetOp::Difference: return in_a && !in_b;
+    case SetOp::SymmetricDifference: return in_a != in_b;
+  }
+  return false;
+}
 
 SolidCheck check_set_operation(const SolidTree& result, const ExactSolid& a, const ExactSolid& b,
                                std::span<const Polygon> a_polys, std::span<const Polygon> b_polys, SetOp op,
@@ -62,7 +62,7 @@ SolidCheck check_set_operation(const SolidTree& result, const ExactSolid& a, con
       ++c.on_operand;
       continue;
     }
-    const bool truth = combine(op, sa == ExactSide::Inside, sb == ExactSide::Inside);
+    const bool truth = in_result(op, sa == ExactSide::Inside, sb == ExactSide::Inside);
     const PointClass got = classify_point(result, p);
     const bool agrees = got == (truth ? PointClass::In : PointClass::Out);
     if (std::min(a.distance(p), b.distance(p)) <= eps) {

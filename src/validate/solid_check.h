@@ -42,6 +42,9 @@ struct SolidCheck {
   }
 };
 
+// Whether a point inside (or not) each operand is inside a op b: the truth both proofs compare with.
+bool in_result(SetOp op, bool in_a, bool in_b);
+
 // The result must be a op b. Points are drawn deterministically from the seed.
 SolidCheck check_set_operation(const SolidTree& result, const ExactSolid& a, const ExactSolid& b,
                                std::span<const Polygon> a_polys, std::span<const Polygon> b_polys, SetOp op,
