@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "catalog.h"
 #include "experiments/kernel/kernel.h"
@@ -163,6 +164,35 @@ TEST(GridPlane, CanonicalFormForgetsACommonFactor) {
     const GridPlane scaled{c.a * k, c.b * k, c.c * k, c.d * k};
     EXPECT_EQ(canonical(scaled), c);
     EXPECT_EQ(canonical(-scaled), -c);
+  }
+}
+
+// canonical against Euclid's algorithm on coefficients of every width the pool meets: small ones
+// beside ones past 2^64 (the step where one number needs 128 bits and the other does not), common
+// factors of any size, zeros. The result is p divided by the positive gcd of its coefficients.
+TEST(GridPlane, CanonicalMatchesEuclidAtMixedWidths) {
+  using U = unsigned __int128;
+  const auto euclid = [](U u, U v) {
+    while (v != 0) u = std::exchange(v, u % v);
+    return u;
+  };
+  const auto mag = [](Int128 v) { return static_cast<U>(v < 0 ? -v : v); };
+  Rng rng(11);
+  const auto coefficient = [&] {
+    const int bits = static_cast<int>(rng.below(120));  // |x| < 2^120, zero about one time in 16
+    if (rng.below(16) == 0) return Int128{0};
+    const U x = (static_cast<U>(rng.next()) << 64 | rng.next()) >> (127 - bits);
+    return rng.below(2) ? static_cast<Int128>(x) : -static_cast<Int128>(x);
+  };
+  for (int i = 0; i < 20000; ++i) {
+    const Int128 f = 1 + static_cast<Int128>(rng.below(std::uint64_t{1} << (rng.below(6) * 12)));
+    GridPlane p{coefficient(), coefficient(), coefficient(), coefficient()};
+    if (mag(p.a) < (U{1} << 100) && mag(p.b) < (U{1} << 100) && mag(p.c) < (U{1} << 100) && mag(p.d) < (U{1} << 100))
+      p = {p.a * f, p.b * f, p.c * f, p.d * f};  // a common factor, kept below 2^127
+    const U g = euclid(euclid(mag(p.a), mag(p.b)), euclid(mag(p.c), mag(p.d)));
+    if (g == 0) continue;
+    const auto k = static_cast<Int128>(g);
+    ASSERT_EQ(canonical(p), (GridPlane{p.a / k, p.b / k, p.c / k, p.d / k})) << "case " << i;
   }
 }
 

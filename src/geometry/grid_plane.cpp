@@ -31,7 +31,9 @@ Int128 magnitude(Int128 v) { return v < 0 ? -v : v; }
 using UInt128 = unsigned __int128;
 
 // Binary GCD [Knuth1997, algorithm B]; gcd(0, v) = v. Each step removes at least
-// a bit, and once both numbers fit 64 bits the steps run in 64-bit registers.
+// a bit, and once both numbers fit 64 bits the steps run in 64-bit registers. The step keeps the
+// smaller number and the difference with min and max, not a swap: which is smaller is a coin
+// toss for the branch predictor, and a canonical plane pays about a hundred steps.
 std::uint64_t gcd64(std::uint64_t u, std::uint64_t v) {
   if (u == 0) return v;
   if (v == 0) return u;
@@ -39,8 +41,9 @@ std::uint64_t gcd64(std::uint64_t u, std::uint64_t v) {
   u >>= __builtin_ctzll(u);
   while (v != 0) {
     v >>= __builtin_ctzll(v);
-    if (u > v) std::swap(u, v);
-    v -= u;
+    const std::uint64_t low = std::min(u, v);
+    v = std::max(u, v) - low;
+    u = low;
   }
   return u << shift;
 }
@@ -55,9 +58,18 @@ UInt128 gcd(UInt128 u, UInt128 v) {
   const int shift = std::min(trailing(u), trailing(v));
   u >>= trailing(u);
   v >>= trailing(v);
+  // One Euclidean step when only one of them needs 128 bits (a partial gcd is often small): the
+  // binary steps would take a bit at a time off the large one. gcd(u, v) = gcd(u, v mod u), and the
+  // remainder's factors of two are not common ones (the other number is odd), so they go too.
+  if ((u >> 64) == 0 && (v >> 64) != 0) v %= u;
+  if ((v >> 64) == 0 && (u >> 64) != 0) u %= v;
+  if (u == 0 || v == 0) return (u | v) << shift;
+  u >>= trailing(u);
+  v >>= trailing(v);
   while ((u >> 64) != 0 || (v >> 64) != 0) {  // both odd here
-    if (u > v) std::swap(u, v);
-    v -= u;
+    const UInt128 low = std::min(u, v);
+    v = std::max(u, v) - low;
+    u = low;
     if (v == 0) return u << shift;
     v >>= trailing(v);
   }

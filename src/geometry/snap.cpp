@@ -37,6 +37,8 @@ SnappedScene snap_polygons(std::span<const Polygon> input, const Grid& grid) {
   SnappedScene out{grid, {}, {}, {}};
   SnapReport& r = out.report;
   std::vector<GridPoint> points, vertices;
+  out.polygons.reserve(input.size());
+  out.corners.reserve(input.size());
   for (std::size_t i = 0; i < input.size(); ++i) {
     const Polygon& poly = input[i];
     if (poly.verts.size() < 3) {

@@ -199,16 +199,34 @@ Side ExactFragments::classify(std::uint32_t id, std::uint32_t plane) const {
   return vertex_sides(id, plane, approx, nullptr);
 }
 
+// The filter decides nearly every vertex: its loop runs over the cofactors alone, and the plane's
+// integers are fetched only for the first vertex it leaves undecided (vertex_side then takes the rest).
 Side ExactFragments::vertex_sides(std::uint32_t id, std::uint32_t plane, const PlaneApprox& approx, int* sides) const {
-  const std::size_t k = rec_[id].count;
-  const GridPlane p = planes_[plane];
+  const Record& r = rec_[id];
+  const VertexCofactors* cof = cof_.data() + r.first;
   bool front = false, back = false;
-  for (std::size_t i = 0; i < k; ++i) {
-    const int s = vertex_side(id, i, p, approx);
-    if (sides) sides[i] = s;
-    front |= s > 0;
-    back |= s < 0;
-    if (front && back && !sides) return Side::Spanning;
+  std::uint32_t i = 0;
+  for (; i < r.count; ++i) {
+    const auto f = detail::filtered_side(cof[i], approx);
+    if (!f.decided) break;
+    if (sides) sides[i] = f.sign;
+    front |= f.sign > 0;
+    back |= f.sign < 0;
+    if (front && back && !sides) {
+      counters_.predicates.filtered += i + 1;
+      return Side::Spanning;
+    }
+  }
+  counters_.predicates.filtered += i;
+  if (i < r.count) {
+    const GridPlane p = planes_[plane];
+    for (; i < r.count; ++i) {
+      const int s = vertex_side(id, i, p, approx);
+      if (sides) sides[i] = s;
+      front |= s > 0;
+      back |= s < 0;
+      if (front && back && !sides) return Side::Spanning;
+    }
   }
   if (front && back) return Side::Spanning;
   if (front) return Side::Front;

@@ -26,10 +26,18 @@ struct Partition {
   std::vector<std::uint32_t> coplanar, front, back;
 };
 
-// A node as built: its pooled plane (kNull for a coarse leaf) and fragments (ids in the store).
+// A node as built: its pooled plane (kNull for a coarse leaf) and how many fragments it holds.
 struct BuiltNode {
   std::uint32_t plane = kNull, front = kNull, back = kNull;
-  std::vector<std::uint32_t> fragments;
+  std::uint32_t fragments = 0;
+};
+
+// What the build produces: its nodes in pre-order and their fragments in node order, each taken
+// out of the store with its pooled plane when its node is made.
+struct Built {
+  std::vector<BuiltNode> nodes;
+  std::vector<PlanePolygon> fragments;
+  std::vector<std::uint32_t> fragment_plane;  // pooled
 };
 
 class ExactBuilder {
@@ -38,7 +46,7 @@ class ExactBuilder {
                ExactBuildStats& exact)
       : frags_(frags), splitter_(splitter), shape_(shape), tol_(tol), bounds_(bounds), stats_(stats), exact_(exact) {}
 
-  std::vector<BuiltNode> run(std::vector<std::uint32_t> ids) {
+  Built run(std::vector<std::uint32_t> ids) {
     std::vector<WorkItem> stack;
     if (!ids.empty()) stack.push_back({std::move(ids)});
     while (!stack.empty()) {
@@ -47,13 +55,13 @@ class ExactBuilder {
       process(std::move(item), stack);
     }
     stats_.choose_seconds += choose_seconds_;
-    return std::move(nodes_);
+    return std::move(built_);
   }
 
  private:
   void process(WorkItem item, std::vector<WorkItem>& stack) {
     if (shape_ == Shape::Coarse && convex_set(item.ids)) {
-      make_node(kNull, std::move(item.ids), item);
+      make_node(kNull, item.ids, item);
       return;
     }
     auto [plane, own_fragment] = choose_plane(item);
@@ -62,7 +70,7 @@ class ExactBuilder {
       plane = frags_.plane(item.ids.front());
     }
     Partition part = partition(std::move(item.ids), plane);
-    const std::uint32_t node = make_node(plane, std::move(part.coplanar), item);
+    const std::uint32_t node = make_node(plane, part.coplanar, item);
     if (!part.back.empty()) stack.push_back({std::move(part.back), node, false, item.depth + 1, SplitContext::child_key(item.key, false)});
     if (!part.front.empty()) stack.push_back({std::move(part.front), node, true, item.depth + 1, SplitContext::child_key(item.key, true)});
   }
@@ -111,7 +119,7 @@ class ExactBuilder {
     std::uint32_t node = item.parent;
     bool front = item.front_side;
     while (node != kNull) {
-      const std::uint32_t p = nodes_[node].plane;
+      const std::uint32_t p = built_.nodes[node].plane;
       cell_planes_.push_back(front ? p : PlanePool::flip(p));
       front = parent_front_[node];
       node = parent_[node];
@@ -136,12 +144,18 @@ class ExactBuilder {
     return part;
   }
 
-  std::uint32_t make_node(std::uint32_t plane, std::vector<std::uint32_t> ids, const WorkItem& item) {
-    const auto index = static_cast<std::uint32_t>(nodes_.size());
-    nodes_.push_back({plane, kNull, kNull, std::move(ids)});
+  // The node's fragments leave the store now, while partition has their records in cache: they are
+  // final, and nodes are made in the frozen tree's order.
+  std::uint32_t make_node(std::uint32_t plane, const std::vector<std::uint32_t>& ids, const WorkItem& item) {
+    const auto index = static_cast<std::uint32_t>(built_.nodes.size());
+    built_.nodes.push_back({plane, kNull, kNull, static_cast<std::uint32_t>(ids.size())});
+    for (auto id : ids) {
+      built_.fragment_plane.push_back(frags_.plane(id));
+      built_.fragments.push_back(frags_.take(id));
+    }
     parent_.push_back(item.parent);
     parent_front_.push_back(item.front_side);
-    if (item.parent != kNull) (item.front_side ? nodes_[item.parent].front : nodes_[item.parent].back) = index;
+    if (item.parent != kNull) (item.front_side ? built_.nodes[item.parent].front : built_.nodes[item.parent].back) = index;
     return index;
   }
 
@@ -152,7 +166,7 @@ class ExactBuilder {
   Box bounds_;
   BuildStats& stats_;
   ExactBuildStats& exact_;
-  std::vector<BuiltNode> nodes_;  // in pre-order (front child first): the stack pops the front first
+  Built built_;  // nodes in pre-order (front child first): the stack pops the front first
   std::vector<std::uint32_t> parent_;
   std::vector<bool> parent_front_;
   std::vector<std::uint32_t> cell_planes_;
@@ -162,8 +176,7 @@ class ExactBuilder {
 // The frozen tree: planes renumbered in first-use order (nodes, then fragments), as freeze() does
 // for a float build, with the grid planes beside them, and the fragments' plane polygons in node
 // order. The view's vertices are left for make_view.
-void freeze_exact(std::vector<BuiltNode>& built, ExactFragments& frags, ExactTree& out) {
-  const GridPlanePool& pool = frags.planes();
+void freeze_exact(Built& built, const GridPlanePool& pool, ExactTree& out) {
   std::vector<std::uint32_t> pair(pool.size() / 2, kNull);
   const auto remap = [&](std::uint32_t p) {
     std::uint32_t& to = pair[p >> 1];
@@ -173,19 +186,15 @@ void freeze_exact(std::vector<BuiltNode>& built, ExactFragments& frags, ExactTre
     }
     return to | (p & 1u);
   };
-  out.tree.nodes.reserve(built.size());
+  out.tree.nodes.reserve(built.nodes.size());
   std::uint32_t first = 0;
-  for (const BuiltNode& n : built) {
+  for (const BuiltNode& n : built.nodes) {
     out.tree.nodes.push_back({n.plane == kNull ? kNull : remap(n.plane), n.front, n.back, first});
-    first += static_cast<std::uint32_t>(n.fragments.size());
+    first += n.fragments;
   }
-  out.fragments.reserve(first);
   out.tree.fragment_plane.reserve(first);
-  for (BuiltNode& n : built)
-    for (auto id : n.fragments) {
-      out.tree.fragment_plane.push_back(remap(frags.plane(id)));
-      out.fragments.push_back(frags.take(id));
-    }
+  for (auto p : built.fragment_plane) out.tree.fragment_plane.push_back(remap(p));
+  out.fragments = std::move(built.fragments);
 }
 
 // The view's fragments: each vertex computed from its three planes (vertex_position), the one
@@ -250,9 +259,8 @@ ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, c
   snapped.corners = {};
   out.exact.load_seconds = seconds_since(load);
 
-  std::vector<BuiltNode> built =
-      ExactBuilder(frags, splitter, options.shape, tree.tol, tree.bounds, stats, out.exact).run(std::move(ids));
-  freeze_exact(built, frags, out);
+  Built built = ExactBuilder(frags, splitter, options.shape, tree.tol, tree.bounds, stats, out.exact).run(std::move(ids));
+  freeze_exact(built, pool, out);
   out.exact.sides = frags.counters();
   stats.build_seconds = seconds_since(start);
   stats.machinery_seconds = stats.build_seconds - stats.choose_seconds;
