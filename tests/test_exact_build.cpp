@@ -110,10 +110,10 @@ TEST(ExactInvariants, CatchSwappedChildrenAndAFragmentOffItsNodesPlane) {
   ExactTree moved = good;
   const GridPlane root = canonical(good.plane(good.tree.nodes[0].plane));
   std::size_t other = 1;
-  while (canonical(good.fragments[other].support) == root || canonical(-good.fragments[other].support) == root) ++other;
+  while (canonical(good.fragments.support(other)) == root || canonical(-good.fragments.support(other)) == root) ++other;
   ASSERT_EQ(good.tree.fragments_of(0).begin, 0u);
   ASSERT_GT(good.tree.fragments_of(0).size(), 0u);  // crystal's root plane is a fragment's
-  moved.fragments[0] = good.fragments[other];
+  moved.fragments.replace(0, good.fragments[other]);
   const ExactInvariantReport r = check_exact_invariants(moved);
   ASSERT_EQ(r.violations, 1u);
   EXPECT_NE(r.first_problems.front().find("not in its node's plane"), std::string::npos);

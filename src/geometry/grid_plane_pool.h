@@ -10,6 +10,7 @@
 // form in scene coordinates (a PlanePool), for splitters' estimates and for output. Neither decides
 // a side.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "geometry/exact_predicates.h"
@@ -39,6 +40,8 @@ class GridPlanePool {
   const PlanePool& scene_planes() const { return scene_; }
   const Grid& grid() const { return grid_; }
   std::size_t size() const { return 2 * planes_.size(); }
+  // The planes by pair (pair k is index 2k), given away: the pool is not read afterwards.
+  std::vector<GridPlane> release_planes() { return std::move(planes_); }
 
  private:
   // The slot of `key` in index_, or the empty slot where it belongs (linear probing).

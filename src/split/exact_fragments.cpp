@@ -457,6 +457,12 @@ std::uint32_t ExactFragments::add_part(PlaneRef support, std::uint32_t pooled, s
   return store(support, pooled, source, first, m + 1);
 }
 
+void ExactFragments::take_into(std::uint32_t id, PlanePolygonSet& out) {
+  const Record& r = rec_[id];
+  out.push_back(support_[id], std::span<const PlaneRef>(bound_.data() + r.first, r.count), r.source);
+  release(id);
+}
+
 PlanePolygon ExactFragments::take(std::uint32_t id) {
   PlanePolygon poly = polygon(id);
   release(id);

@@ -25,11 +25,13 @@
 // bounding spheres are not computed (no splitter tests sides on the copy).
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "geometry/grid_plane_pool.h"
 #include "common/page_allocator.h"
 #include "geometry/plane_polygon.h"
+#include "geometry/plane_polygon_set.h"
 #include "split/fragment_store.h"
 
 namespace bsp {
@@ -65,6 +67,12 @@ class ExactFragments {
   // The fragment's plane polygon; take() releases the fragment.
   PlanePolygon polygon(std::uint32_t id) const;
   PlanePolygon take(std::uint32_t id);
+  // Appends the fragment to `out` by reference (its planes stay here until adopted from
+  // release_input_planes() and the pool) and releases it.
+  void take_into(std::uint32_t id, PlanePolygonSet& out);
+  // The input's planes, which references with the top bit clear point to; the store reads them no
+  // more (what is left of it is only released).
+  PageVector<GridPlane> release_input_planes() { return std::move(own_); }
 
   std::uint32_t plane(std::uint32_t id) const { return rec_[id].support; }  // pooled support
   const FragmentStore& rounded() const { return rounded_; }
@@ -104,8 +112,8 @@ class ExactFragments {
   // A plane a fragment refers to, in 32 bits: with the top bit clear, one of the input's planes as
   // loaded (a support or an edge plane, kept once in own_ with its rounding); with it set, a pooled
   // plane (a cut, in either orientation). Parts copy references, never planes.
-  using PlaneRef = std::uint32_t;
-  static constexpr PlaneRef kPooled = 0x80000000u;
+  using PlaneRef = PlanePolygonSet::PlaneRef;
+  static constexpr PlaneRef kPooled = PlanePolygonSet::kPooled;
   GridPlane plane_of(PlaneRef r) const { return (r & kPooled) ? planes_[r & ~kPooled] : own_[r]; }
   PlaneApprox approx_of(PlaneRef r) const { return (r & kPooled) ? planes_.approx(r & ~kPooled) : own_approx_[r]; }
   FilterBox box(std::uint32_t id) const;

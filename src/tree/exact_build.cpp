@@ -36,7 +36,7 @@ struct BuiltNode {
 // out of the store with its pooled plane when its node is made.
 struct Built {
   std::vector<BuiltNode> nodes;
-  std::vector<PlanePolygon> fragments;
+  PlanePolygonSet fragments;                  // by reference into the store's input planes and the pool
   std::vector<std::uint32_t> fragment_plane;  // pooled
 };
 
@@ -151,7 +151,7 @@ class ExactBuilder {
     built_.nodes.push_back({plane, kNull, kNull, static_cast<std::uint32_t>(ids.size())});
     for (auto id : ids) {
       built_.fragment_plane.push_back(frags_.plane(id));
-      built_.fragments.push_back(frags_.take(id));
+      frags_.take_into(id, built_.fragments);
     }
     parent_.push_back(item.parent);
     parent_front_.push_back(item.front_side);
@@ -176,7 +176,8 @@ class ExactBuilder {
 // The frozen tree: planes renumbered in first-use order (nodes, then fragments), as freeze() does
 // for a float build, with the grid planes beside them, and the fragments' plane polygons in node
 // order. The view's vertices are left for make_view.
-void freeze_exact(Built& built, const GridPlanePool& pool, ExactTree& out) {
+void freeze_exact(Built& built, ExactFragments& frags, ExactTree& out) {
+  GridPlanePool& pool = frags.planes();
   std::vector<std::uint32_t> pair(pool.size() / 2, kNull);
   const auto remap = [&](std::uint32_t p) {
     std::uint32_t& to = pair[p >> 1];
@@ -195,6 +196,7 @@ void freeze_exact(Built& built, const GridPlanePool& pool, ExactTree& out) {
   out.tree.fragment_plane.reserve(first);
   for (auto p : built.fragment_plane) out.tree.fragment_plane.push_back(remap(p));
   out.fragments = std::move(built.fragments);
+  out.fragments.adopt(frags.release_input_planes(), pool.release_planes());
 }
 
 // The view's fragments: each vertex computed from its three planes (vertex_position), the one
@@ -203,7 +205,8 @@ void freeze_exact(Built& built, const GridPlanePool& pool, ExactTree& out) {
 void make_view(ExactTree& out) {
   out.tree.fragments.reserve(out.fragments.size(), 4 * out.fragments.size());
   Polygon poly;
-  for (const PlanePolygon& f : out.fragments) {
+  for (std::size_t i = 0; i < out.fragments.size(); ++i) {
+    const PlanePolygon f = out.fragments[i];
     poly.source = f.source;
     poly.verts.clear();
     for (const Vec3& p : vertex_positions(f, out.grid)) poly.verts.push_back({p});
@@ -260,7 +263,7 @@ ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, c
   out.exact.load_seconds = seconds_since(load);
 
   Built built = ExactBuilder(frags, splitter, options.shape, tree.tol, tree.bounds, stats, out.exact).run(std::move(ids));
-  freeze_exact(built, pool, out);
+  freeze_exact(built, frags, out);
   out.exact.sides = frags.counters();
   stats.build_seconds = seconds_since(start);
   stats.machinery_seconds = stats.build_seconds - stats.choose_seconds;

@@ -22,6 +22,7 @@
 
 #include "geometry/grid_plane.h"
 #include "geometry/plane_polygon.h"
+#include "geometry/plane_polygon_set.h"
 #include "geometry/snap.h"
 #include "split/exact_fragments.h"
 #include "split/splitter.h"
@@ -59,7 +60,7 @@ struct ExactTree {
   Tree tree;
   Grid grid = Grid::for_box(Box{});
   std::vector<GridPlane> planes;        // by pair: tree.planes[2k] is the rounding of planes[k]
-  std::vector<PlanePolygon> fragments;  // parallel to tree.fragments
+  PlanePolygonSet fragments;            // parallel to tree.fragments
   ExactBuildStats exact;
 
   GridPlane plane(std::uint32_t i) const { return (i & 1u) ? -planes[i >> 1] : planes[i >> 1]; }

@@ -94,7 +94,7 @@ class Checker {
   }
 
   void check_storage(const Node& n, std::uint32_t f, const FragmentRange& r) {
-    const GridPlane& support = t_.fragments[f].support;
+    const GridPlane support = t_.fragments.support(f);
     if (n.plane != kNull) {
       const GridPlane p = canonical(t_.plane(n.plane));
       const GridPlane s = canonical(support);
@@ -102,7 +102,7 @@ class Checker {
       return;
     }
     for (std::uint32_t g = r.begin; g < r.end; ++g)
-      if (g != f && !in_front_or_on(f, t_.fragments[g].support))
+      if (g != f && !in_front_or_on(f, t_.fragments.support(g)))
         fail("coarse leaf fragment " + std::to_string(f) + " is behind fragment " + std::to_string(g));
   }
 
@@ -111,7 +111,7 @@ class Checker {
   }
 
   bool in_front_or_on(std::uint32_t f, const GridPlane& plane) {
-    const PlanePolygon& poly = t_.fragments[f];
+    const PlanePolygon poly = t_.fragments[f];
     for (std::size_t i = 0; i < poly.size(); ++i)
       if (side_of_vertex(poly.support, poly.before(i), poly.after(i), plane, report_.predicates) < 0) return false;
     return true;
