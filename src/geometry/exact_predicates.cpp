@@ -70,9 +70,13 @@ Matrix<T, 4> planes(const GridPlane& p1, const GridPlane& p2, const GridPlane& p
   return m;
 }
 
-// Each conversion rounds once, to nearest.
-double to_double(Int128 v) { return static_cast<double>(v); }
-double to_magnitude(Int128 v) { return std::abs(static_cast<double>(v)); }
+// Each conversion rounds once, to nearest. A value that fits 64 bits (most normals' coefficients)
+// takes the one-instruction conversion, which rounds the same; the 128-bit one is a library call.
+double to_double(Int128 v) {
+  const auto low = static_cast<std::int64_t>(v);
+  return low == v ? static_cast<double>(low) : static_cast<double>(v);
+}
+double to_magnitude(Int128 v) { return std::abs(to_double(v)); }
 Exact to_exact(Int128 v) { return Exact(v); }
 
 detail::MaybeSign decide(double det, double permanent, int roundings) {

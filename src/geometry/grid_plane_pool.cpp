@@ -15,12 +15,14 @@ bool stored_orientation(const GridPlane& p) {
 
 }  // namespace
 
-Plane scene_plane(const GridPlane& p, const Grid& grid) {
+Plane scene_plane(const GridPlane& p, const Grid& grid) { return scene_plane(approximate(p), grid); }
+
+Plane scene_plane(const PlaneApprox& p, const Grid& grid) {
   // a . (x - origin) / step + d = 0, multiplied by step / |a|.
-  const Vec3 a{static_cast<double>(p.a), static_cast<double>(p.b), static_cast<double>(p.c)};
+  const Vec3 a{p.a, p.b, p.c};
   const double length = std::sqrt(dot(a, a));
   const Vec3 n = a / length;
-  return {n, (static_cast<double>(p.d) * grid.step() - dot(a, grid.origin())) / length};
+  return {n, (p.d * grid.step() - dot(a, grid.origin())) / length};
 }
 
 namespace {
@@ -69,7 +71,7 @@ std::uint32_t GridPlanePool::add(const GridPlane& p) {
   if (index_[i] == 0) {
     planes_.push_back(key);
     approx_.push_back(approximate(key));
-    scene_.append_distinct(scene_plane(key, grid_));
+    scene_.append_distinct(scene_plane(approx_.back(), grid_));
     index_[i] = static_cast<std::uint32_t>(planes_.size());
   }
   return 2 * (index_[i] - 1) + (as_stored ? 0u : 1u);

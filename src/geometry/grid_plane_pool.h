@@ -22,6 +22,8 @@ namespace bsp {
 
 // The unit-normal plane of scene coordinates nearest a grid plane (rounded in doubles: an estimate).
 Plane scene_plane(const GridPlane& p, const Grid& grid);
+// The same from the plane's rounded coefficients (approximate(p)), which round alike.
+Plane scene_plane(const PlaneApprox& p, const Grid& grid);
 
 class GridPlanePool {
  public:

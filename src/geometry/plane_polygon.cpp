@@ -39,6 +39,7 @@ std::optional<PlanePolygon> plane_polygon(std::span<const GridPoint> points, std
   if (!support) return std::nullopt;
   PlanePolygon poly{*support, {}, source};
   const std::size_t k = c.size();
+  poly.bounds.reserve(k);
   for (std::size_t i = 0; i < k; ++i) {
     if (support->side(c[i]) != 0) return std::nullopt;
     // Edge i runs from point i to point i + 1, so vertex i is point i + 1; any third corner is
