@@ -65,19 +65,8 @@ std::uint32_t ExactSolidSpace::plane_in_box(std::uint32_t plane) {
 }
 
 std::uint32_t ExactSolidSpace::clip(std::uint32_t id, std::uint32_t plane) {
-  switch (shps_.classify(id, plane)) {
-    case Side::Front:
-    case Side::Coplanar: return id;
-    case Side::Back:
-      shps_.release(id);
-      return kNone;
-    case Side::Spanning: {
-      const ExactFragments::Parts parts = shps_.split(id, plane);
-      shps_.release(parts.back);
-      return parts.front;
-    }
-  }
-  return kNone;
+  const std::uint32_t front = shps_.clip(id, plane);
+  return front == FragmentStore::kNone ? kNone : front;
 }
 
 Ref ExactSolidTree::add_node(std::uint32_t plane, std::uint32_t shp_id, Ref front, Ref back) {

@@ -90,6 +90,10 @@ class ExactFragments {
     std::uint32_t front = FragmentStore::kNone, back = FragmentStore::kNone;
   };
   Parts split(std::uint32_t id, std::uint32_t plane, bool keep_parent = false);
+  // The part of the fragment in front of pooled plane `plane` or on it: the fragment itself when
+  // it lies there whole; FragmentStore::kNone when it lies behind; else the front part of a split,
+  // made alone (the back part is never computed). The fragment is released unless returned.
+  std::uint32_t clip(std::uint32_t id, std::uint32_t plane);
 
   const ExactSideCounters& counters() const { return counters_; }
 
