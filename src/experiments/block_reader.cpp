@@ -9,6 +9,7 @@
 #include "experiments/heuristic_choice.h"
 #include "mesh_scenes.h"
 #include "split/registry.h"
+#include "tree/exact_build.h"
 
 namespace bsp::experiments {
 
@@ -139,6 +140,17 @@ std::vector<std::string> BlockReader::names(const json& j, const std::string& pa
     once(seen, name, p);
     out.push_back(name);
   });
+  return out;
+}
+
+std::vector<Kernel> BlockReader::kernels(const json& object, const std::string& path) const {
+  const json* j = optional(object, "kernels");
+  if (!j) return {};
+  std::vector<Kernel> out;
+  for (const auto& name : names(*j, child(path, "kernels"), "leave \"kernels\" out for float only", [](const std::string& k) {
+         if (!kernel_named(k)) throw UsageError("unknown kernel '" + k + "' (float or exact)");
+       }))
+    out.push_back(*kernel_named(name));
   return out;
 }
 

@@ -19,6 +19,7 @@
 
 namespace bsp {
 struct GeneratorInfo;
+enum class Kernel : std::uint8_t;  // tree/exact_build.h
 }
 
 namespace bsp::experiments {
@@ -78,6 +79,8 @@ class BlockReader {
   // A non-empty list of distinct names, each checked by `check` (which throws what registries throw).
   std::vector<std::string> names(const json& j, const std::string& path, std::string_view if_empty,
                                  const std::function<void(const std::string&)>& check) const;
+  // The block's "kernels", distinct "float" and "exact"; empty when it has none (float only).
+  std::vector<Kernel> kernels(const json& object, const std::string& path) const;
 
   // {"k": v, ...} against `specs`, each parameter checked at its own path. A generator's n and
   // seed come from the block's sizes and seeds, not from here.

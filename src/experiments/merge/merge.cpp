@@ -196,12 +196,7 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
     r.fail(path, "missing key 'sizes' (polygons per operand)");
   }
   b->seeds = r.seeds(j, path);
-  if (const json* kernels = r.optional(j, "kernels"))
-    for (const auto& name : r.names(*kernels, child(path, "kernels"), "leave \"kernels\" out for float only",
-                                    [](const std::string& k) {
-                                      if (!kernel_named(k)) throw UsageError("unknown kernel '" + k + "' (float or exact)");
-                                    }))
-      b->kernels.push_back(*kernel_named(name));
+  b->kernels = r.kernels(j, path);
   b->points = kDefaultPoints;
   if (const json* points = r.optional(j, "points")) b->points = r.integer(*points, child(path, "points"), 0, kMaxPoints);
   return b;
