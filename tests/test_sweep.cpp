@@ -6,8 +6,9 @@
 // is a timing; the regression gate passes an identical report and fails a changed fragment count, a
 // missing run, a violation, a ray-shooting mismatch and a group of build times significantly 1.6x
 // slower, while 1.4x slower, faster, one outlier and a uniformly slower machine pass; on merge runs
-// it fails a changed merge cost, a failed proof and a slower group of merges. The complete example
-// of analysis/SUITE_SCHEMA.md expands to the jobs its keys ask for.
+// it fails a changed merge cost, a failed proof and a slower group of merges. A drawing block's
+// exact kernel records the exact tree, keyed, aggregated and timed apart from the float runs. The
+// complete example of analysis/SUITE_SCHEMA.md expands to the jobs its keys ask for.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -22,6 +23,7 @@
 
 #include "catalog.h"
 #include "common/errors.h"
+#include "metrics/kernel_stats.h"
 #include "metrics/statistics.h"
 #include "mesh_scenes.h"
 #include "solid_pairs.h"
@@ -413,6 +415,137 @@ TEST(SweepSuites, MergeKernelsJoinTheKeyOnlyWhenExact) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("unknown kernel 'fixed'"), std::string::npos) << e.what();
   }
+}
+
+// A drawing block of near-degenerate at 100 polygons with crystal, two views, and `kernels` (a
+// suite file's text after the block's other keys, "" for none).
+Suite near_degenerate_suite(const std::string& kernels) {
+  return suite_of(R"({"name": "d", "blocks": [{"scenes": ["near-degenerate"], "heuristics": ["crystal"], "sizes": [100],
+                      "seeds": [1], "validation": {"views": 2})" + kernels + "}]}");
+}
+
+// The one float and the one exact drawing run of a sweep of near_degenerate_suite in both kernels,
+// shared by the tests that only read it.
+const nlohmann::json& both_kernels_report() {
+  static const nlohmann::json report = sweep_once(near_degenerate_suite(R"(, "kernels": ["float", "exact"])"));
+  return report;
+}
+
+const nlohmann::json& run_of_kernel(const nlohmann::json& report, bool exact) {
+  for (const auto& run : report["runs"])
+    if (run["id"].contains("kernel") == exact) return run;
+  throw std::runtime_error(exact ? "no exact run" : "no float run");
+}
+
+// "kernels" in a drawing block doubles its jobs; a float job's key is the key it had before kernels
+// existed (so the baseline keeps matching), and an exact one's names the kernel, as do its identity,
+// its command and what makes it a run of its own.
+TEST(SweepSuites, DrawKernelsJoinTheKeyOnlyWhenExact) {
+  const auto plain = expand(near_degenerate_suite(""));
+  const auto both = expand(near_degenerate_suite(R"(, "kernels": ["float", "exact"])"));
+  ASSERT_EQ(plain.size(), 1u);
+  ASSERT_EQ(both.size(), 2u);
+  const bool exact_first = both[0]->identity().contains("kernel");
+  const auto& floating = *both[exact_first ? 1 : 0];
+  const auto& exact = *both[exact_first ? 0 : 1];
+  EXPECT_EQ(facts(floating).key, facts(*plain[0]).key);
+  EXPECT_EQ(floating.identity(), plain[0]->identity());
+  EXPECT_NE(facts(exact).key, facts(*plain[0]).key);
+  EXPECT_NE(exact.measured_identity(), floating.measured_identity());
+  EXPECT_EQ(exact.identity()["kernel"], "exact");
+  EXPECT_EQ(exact.identity()["command"], floating.identity()["command"].get<std::string>() + " --kernel exact");
+  EXPECT_EQ(dynamic_cast<const DrawJob&>(exact).kernel(), Kernel::Exact);
+  EXPECT_EQ(expand(near_degenerate_suite(R"(, "kernels": ["exact"])")).size(), 1u);
+}
+
+// The block's parser refuses an unknown kernel, and the exact kernel where `bspbench build --kernel
+// exact` refuses it: incremental builds, leafy trees, 2D scenes; each with one line at the key.
+TEST(SweepSuites, DrawKernelsRefuseWhatTheExactKernelDoesNotBuild) {
+  const auto refused = [](const std::string& text) -> std::string {
+    try {
+      suite_of(text);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  const std::string head = R"({"name": "d", "blocks": [{"sizes": [100], )";
+  EXPECT_EQ(refused(head + R"("scenes": ["near-degenerate"], "kernels": ["float", "fixed"]}]})"),
+            "test.json: blocks[0].kernels[1]: unknown kernel 'fixed' (float or exact)");
+  EXPECT_EQ(refused(head + R"("scenes": ["near-degenerate"], "kernels": []}]})"),
+            "test.json: blocks[0].kernels: empty list (leave \"kernels\" out for float only)");
+  EXPECT_EQ(refused(head + R"("scenes": ["near-degenerate"], "incremental": true, "kernels": ["exact"]}]})"),
+            "test.json: blocks[0].kernels: the exact kernel builds recursively, not incrementally (leave \"exact\" out)");
+  EXPECT_EQ(refused(head + R"("scenes": ["near-degenerate"], "shapes": ["strict", "leafy"], "kernels": ["exact"]}]})"),
+            "test.json: blocks[0].kernels: the exact kernel builds strict and coarse trees, not leafy ones (leave "
+            "\"exact\" or \"leafy\" out)");
+  EXPECT_EQ(refused(head + R"("scenes": ["near-degenerate", "random-segments"], "kernels": ["float", "exact"]}]})"),
+            "test.json: blocks[0].kernels: the exact kernel builds 3D scenes; random-segments is 2D segments");
+  // Float alone asks nothing of the exact kernel.
+  EXPECT_EQ(refused(head + R"("scenes": ["random-segments"], "incremental": true, "kernels": ["float"]}]})"), "accepted");
+}
+
+// An exact drawing run is the exact kernel's tree: its metrics are those of build_exact_tree's view
+// (fragments, nodes and depth equal), measured as `bspbench build --kernel exact` measures them,
+// with the kernel's stats beside them and their wall times among the timings; its invariants and
+// order are checked exactly (plane_eps 0), with no violation and no ray-shooting cross-check.
+TEST(SweepRecord, AnExactDrawingRunRecordsTheExactTree) {
+  const nlohmann::json& report = both_kernels_report();
+  ASSERT_EQ(report["summary"]["failures"], 0) << report["failures"].dump();
+  ASSERT_EQ(report["runs"].size(), 2u);
+  const nlohmann::json& run = run_of_kernel(report, true);
+  const auto jobs = expand(near_degenerate_suite(R"(, "kernels": ["exact"])"));
+  const Scene scene = dynamic_cast<const DrawJob&>(*jobs[0]).spec().make_scene();
+  const ExactTree tree = build_exact_tree(scene.polygons, *make_splitter("crystal", {}, 1));
+  const TreeMetrics expected = measure_tree(tree.tree);
+  EXPECT_EQ(run["metrics"]["fragments"], expected.fragments);
+  EXPECT_EQ(run["metrics"]["nodes"], expected.nodes);
+  EXPECT_EQ(run["metrics"]["max_depth"], expected.max_depth);
+  nlohmann::json stats = to_json(tree.exact);
+  for (const char* timing : {"snap_seconds", "load_seconds", "view_seconds"}) {
+    stats.erase(timing);
+    EXPECT_TRUE(run["timings"].contains(std::string("exact_") + timing)) << timing;
+  }
+  EXPECT_EQ(run["metrics"]["exact"], stats);
+  EXPECT_EQ(run["invariants"]["violations"], 0) << run["invariants"].dump();
+  EXPECT_EQ(run["validation"]["violations"], 0);
+  EXPECT_EQ(run["validation"]["views"], 2);
+  EXPECT_EQ(run["validation"]["plane_eps"], 0.0);
+  EXPECT_TRUE(run["validation"].contains("refused_hits"));
+  EXPECT_TRUE(run["ray_shooting"].is_null());
+  EXPECT_EQ(run["timings"]["build_cpu_samples"].size(), 5u);
+  // The float run has none of it, and checks its order within a tolerance.
+  const nlohmann::json& floating = run_of_kernel(report, false);
+  EXPECT_FALSE(floating["metrics"].contains("exact"));
+  EXPECT_GT(floating["validation"]["plane_eps"].get<double>(), 0.0);
+  EXPECT_FALSE(floating["ray_shooting"].is_null());
+  // The report's tables can explain every timing of the exact run.
+  std::ifstream in(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/metric_docs.json");
+  const nlohmann::json docs = nlohmann::json::parse(in)["metrics"];
+  for (const auto& [key, value] : run["timings"].items()) {
+    if (value.is_number()) {
+      EXPECT_TRUE(docs.contains(key)) << key << " is not in metric_docs.json";
+    }
+  }
+}
+
+// Float and exact drawing runs aggregate apart (the exact group's head names its kernel, the float
+// one's is as before kernels existed), and the gate times them in groups of their own.
+TEST(SweepRecord, ExactDrawingRunsAggregateAndAreTimedApart) {
+  const nlohmann::json& report = both_kernels_report();
+  ASSERT_EQ(report["aggregates"].size(), 2u);
+  std::set<std::string> kernels;
+  for (const auto& agg : report["aggregates"]) {
+    kernels.insert(agg.value("kernel", "none"));
+    ASSERT_EQ(agg["by_n"].size(), 1u);
+    EXPECT_EQ(agg["by_n"][0]["runs"], 1);
+  }
+  EXPECT_EQ(kernels, (std::set<std::string>{"exact", "none"}));
+  const RegressResult r = compare_reports(report, report, {});
+  EXPECT_FALSE(r.failed());
+  std::set<std::string> groups;
+  for (const auto& t : r.timing_tests) groups.insert(t.group);
+  EXPECT_EQ(groups, (std::set<std::string>{"near-degenerate crystal strict", "near-degenerate crystal strict exact"}));
 }
 
 // The scorers whose sources score every plane run that way too, beside their sampled defaults, in

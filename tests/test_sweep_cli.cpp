@@ -428,7 +428,7 @@ TEST_F(SweepCli, BadSuiteFilesAreOneLineErrorsWithTheirJsonPath) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {R"({"name": "x", "blocks": [{)" + ok_block + R"(, "seedz": [1]}]})",
        "s.json: blocks[0]: unknown key 'seedz' (known: scenes, heuristics, incremental, sizes, scene_sizes, seeds, "
-       "shapes, validation)"},
+       "shapes, validation, kernels)"},
       {R"({"name": "x", "bloks": []})", "s.json: unknown key 'bloks'"},
       {R"({"name": "x", "blocks": [{"scenes": ["city"], "sizes": "100"}]})",
        "s.json: blocks[0].sizes: expected an array, got string"},

@@ -2,18 +2,24 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <set>
 
 #include <nlohmann/json.hpp>
 
 #include "catalog.h"
 #include "common/cpu_time.h"
+#include "common/errors.h"
+#include "common/hash.h"
 #include "experiments/reference_build.h"
 #include "geometry/segment2.h"
 #include "io/mesh_reader.h"
 #include "mesh_scenes.h"
+#include "metrics/kernel_stats.h"
 #include "metrics/tree_metrics.h"
 #include "tree/build.h"
+#include "validate/exact_invariants.h"
+#include "validate/exact_order_check.h"
 #include "validate/order_check.h"
 #include "validate/ray_shoot_check.h"
 #include "validate/tree_invariants.h"
@@ -36,10 +42,15 @@ constexpr TimingField kTimings[] = {
     {"metrics_cpu_seconds", TimingRole::Cpu, "thread CPU seconds of measure_tree"},
     {"validation_seconds", TimingRole::Wall, "wall time of the Embree order check"},
     {"validation_rays_per_second", TimingRole::Rate, "rays cast per wall-clock second in the order check"},
+    {"exact_snap_seconds", TimingRole::Wall, "exact kernel: wall time of snapping the input to the grid, in the first build"},
+    {"exact_load_seconds", TimingRole::Wall, "exact kernel: wall time of loading the snapped input (cofactors, pooled supports)"},
+    {"exact_view_seconds", TimingRole::Wall, "exact kernel: wall time of computing the tree's view in doubles"},
     {"job_seconds", TimingRole::Wall, "wall time of the whole job"},
 };
 
-// What aggregation fits growth of (experiments/kind.h).
+// What aggregation groups by and fits growth of (experiments/kind.h). A float run names no kernel,
+// so float groups are as they were before kernels existed.
+constexpr std::string_view kGroupBy[] = {"kernel"};
 constexpr std::string_view kGrowthMetrics[] = {"fragments", "nodes"};
 constexpr std::string_view kGrowthTimings[] = {"build_cpu_seconds", "build_seconds"};
 // Splits (what a partition adds), fragments and build time, over the sizes, for the theory check.
@@ -77,6 +88,11 @@ std::vector<std::optional<HeuristicChoice>> heuristic_choices(const DrawBlock& b
   return out;
 }
 
+// The block's kernels; float alone when it names none.
+std::vector<Kernel> kernels_of(const DrawBlock& block) {
+  return block.kernels.empty() ? std::vector<Kernel>{Kernel::Float} : block.kernels;
+}
+
 SceneFile scene_file(const SceneSpec& spec) {
   std::string path = spec.path;
   if (path.empty())
@@ -91,9 +107,10 @@ void expand_mesh(const DrawBlock& block, const SceneSpec& spec, Jobs& out) {
   const SceneFile file = scene_file(spec);
   for (const auto& h : heuristic_choices(block))
     for (auto shape : block.shapes)
-      for (auto seed : block.seeds)
-        out.push_back(std::make_shared<DrawJob>(
-            SceneRun{spec.name, {}, file, h, shape, seed, 0, block.validation.views}));
+      for (auto kernel : kernels_of(block))
+        for (auto seed : block.seeds)
+          out.push_back(std::make_shared<DrawJob>(
+              SceneRun{spec.name, {}, file, h, shape, seed, 0, block.validation.views}, kernel));
 }
 
 // ---- the block's parser ----
@@ -104,7 +121,8 @@ class DrawBlockReader {
 
   std::unique_ptr<const Block> block(const json& j, const std::string& path) const {
     r_.expect(j, j.is_object(), path, "an object");
-    r_.check_keys(j, path, {"scenes", "heuristics", "incremental", "sizes", "scene_sizes", "seeds", "shapes", "validation"});
+    r_.check_keys(j, path,
+                  {"scenes", "heuristics", "incremental", "sizes", "scene_sizes", "seeds", "shapes", "validation", "kernels"});
     auto b = std::make_unique<DrawBlock>();
     if (const json* inc = r_.optional(j, "incremental")) b->incremental = r_.boolean(*inc, child(path, "incremental"));
     // The generators of the block, named or (no "scenes") every drawn one.
@@ -151,6 +169,9 @@ class DrawBlockReader {
     }
     if (const json* v = r_.optional(j, "validation")) b->validation = validation(*v, child(path, "validation"));
     else b->validation = {1, 0, 1};
+    b->kernels = r_.kernels(j, path);
+    const std::string refused = exact_refusal(*b, named);
+    if (!refused.empty()) r_.fail(child(path, "kernels"), refused);
     return b;
   }
 
@@ -160,6 +181,18 @@ class DrawBlockReader {
     const GeneratorInfo* generator = nullptr;  // nullptr for meshes
     std::string identity;                      // what makes two scenes of a block the same
   };
+
+  // Why the block cannot run in the exact kernel it asks for, as `bspbench build --kernel exact`
+  // refuses the same builds; empty when it can (or asks for float only).
+  static std::string exact_refusal(const DrawBlock& b, const std::vector<const GeneratorInfo*>& named) {
+    if (std::find(b.kernels.begin(), b.kernels.end(), Kernel::Exact) == b.kernels.end()) return {};
+    if (b.incremental) return "the exact kernel builds recursively, not incrementally (leave \"exact\" out)";
+    if (std::find(b.shapes.begin(), b.shapes.end(), Shape::Leafy) != b.shapes.end())
+      return "the exact kernel builds strict and coarse trees, not leafy ones (leave \"exact\" or \"leafy\" out)";
+    for (const auto* g : named)
+      if (g->segments) return "the exact kernel builds 3D scenes; " + g->name + " is 2D segments";
+    return {};
+  }
 
   // A mesh is read once here, so a missing, unreadable or empty one stops the suite before it runs.
   void check_mesh(const std::string& file, const std::string& path) const {
@@ -304,6 +337,72 @@ json ray_shooting_json(const Tree& tree, const SceneRun& s) {
   return to_json(check_ray_shooting(tree, EmbreeScene(fragments, tree.tol.plane_eps), rays));
 }
 
+// What the exact kernel does not build (a block's parser refuses it before anything runs); a leafy
+// shape is refused by build_exact_tree.
+void check_exact_build(const SceneRun& s, const Scene& scene) {
+  if (s.incremental()) throw UsageError("the exact kernel builds recursively, not incrementally");
+  if (all_segments(scene.polygons)) throw UsageError("the exact kernel builds 3D scenes; " + s.scene + " is 2D segments");
+}
+
+// The exact kernel's tree, built as `bspbench build --kernel exact` builds it.
+ExactTree build_exact_once(const SceneRun& s, const Scene& scene) {
+  return build_exact_tree(scene.polygons, *s.heuristic->splitter(s.seed), BuildOptions{.shape = s.shape});
+}
+
+json exact_invariants_json(const ExactTree& tree) {
+  const ExactInvariantReport r = check_exact_invariants(tree);
+  return {{"violations", r.violations}, {"first_problems", r.first_problems}};
+}
+
+// The exact order check from the job's views, eyes snapped to the grid; null with no views.
+json exact_validation_json(const ExactTree& tree, const SceneRun& s, json& timings) {
+  if (s.views == 0) return nullptr;
+  json v = to_json(validate_exact_tree(tree, validation_settings(s)));
+  split_timings(v, timings, "validation_", kTimings);
+  return v;
+}
+
+// `hash` with the kernel joined when it is not float, so float keys stay as they were.
+std::string with_kernel(const std::string& hash, Kernel kernel) {
+  if (kernel == Kernel::Float) return hash;
+  Hasher h;
+  h.add_string(hash);
+  h.add_string(kernel_name(kernel));
+  return h.hex();
+}
+
+// Repeated builds in timed batches, each beside its reference (Embree's BVH build of the scene).
+void time_builds(const std::function<void()>& build, const Scene& scene, double slowdown, json& timings) {
+  const ReferenceBuild reference(scene.polygons);
+  const TimedBatches batches = time_batches(build, slowdown, [&] { reference.run(); });
+  timings["build_cpu_samples"] = batches.samples;
+  timings["build_reference_samples"] = batches.reference;
+  timings["build_cpu_builds"] = batches.runs;
+  timings["build_cpu_seconds"] = batches.median();
+}
+
+// The tree's metrics (MetricsSettings' defaults with the job's seed for the metric rays), their
+// timings moved to `timings`.
+json metrics_json(const Tree& tree, const Scene& scene, std::uint64_t seed, json& timings) {
+  MetricsSettings settings;
+  settings.seed = seed;
+  const double cpu = thread_cpu_seconds();
+  json metrics = to_json(measure_drawing(tree, scene.polygons, settings));
+  timings["metrics_cpu_seconds"] = thread_cpu_seconds() - cpu;
+  split_timings(metrics, timings, "", kTimings);
+  return metrics;
+}
+
+// The job's identity with what the scene turned out to be.
+json scene_identity(json id, const Scene& scene) {
+  id["n_polygons"] = scene.polygons.size();
+  const json described = scene_json(scene);
+  id["scene_hash"] = described["hash"];
+  id["scene_bounds"] = described["bounds"];
+  if (described.contains("load")) id["scene_load"] = described["load"];
+  return id;
+}
+
 Tree build_once(const SceneRun& s, const Scene& scene) {
   BuildOptions options{.shape = s.shape};
   if (s.incremental()) {
@@ -335,51 +434,62 @@ Jobs DrawBlock::expand() const {
     for (auto n : sizes_for(g, *this))
       for (const auto& h : heuristic_choices(*this))
         for (auto shape : shapes)
-          for (auto seed : seeds)
-            out.push_back(std::make_shared<DrawJob>(
-                SceneRun::generated(g, spec.params, h, shape, seed, n, validation.views_for(n))));
+          for (auto kernel : kernels_of(*this))
+            for (auto seed : seeds)
+              out.push_back(std::make_shared<DrawJob>(
+                  SceneRun::generated(g, spec.params, h, shape, seed, n, validation.views_for(n)), kernel));
   }
   return out;
 }
 
-DrawJob::DrawJob(SceneRun spec) : spec_(std::move(spec)) { set_identity(spec_.hash(spec_.key_scene_text()), spec_.n); }
+DrawJob::DrawJob(SceneRun spec, Kernel kernel) : spec_(std::move(spec)), kernel_(kernel) {
+  set_identity(with_kernel(spec_.hash(spec_.key_scene_text()), kernel_), spec_.n);
+}
 
 // A generated scene by its content; a mesh has no nominal size, so its key says it all.
-std::string DrawJob::measured_identity() const { return spec_.file ? key() : spec_.hash(spec_.content_hash()); }
+std::string DrawJob::measured_identity() const {
+  return spec_.file ? key() : with_kernel(spec_.hash(spec_.content_hash()), kernel_);
+}
 
-nlohmann::json DrawJob::identity() const { return spec_.identity(kind()); }
+nlohmann::json DrawJob::identity() const {
+  json id = spec_.identity(kind());
+  if (kernel_ == Kernel::Float) return id;
+  id["kernel"] = kernel_name(kernel_);
+  id["command"] = id["command"].get<std::string>() + " --kernel " + kernel_name(kernel_);
+  return id;
+}
+
+// The record of the exact kernel's tree: RUN's metrics measured on the tree's view, with what the
+// kernel did under metrics.exact; its invariants and order decided exactly; no ray-shooting
+// cross-check (the walk decides in doubles).
+nlohmann::json DrawJob::run_exact(const RunContext& context, const Scene& scene, double start) const {
+  check_exact_build(spec_, scene);
+  json timings = json::object();
+  const ExactTree tree = build_exact_once(spec_, scene);
+  time_builds([&] { build_exact_once(spec_, scene); }, scene, context.slowdown(spec_.heuristic_label()), timings);
+  json metrics = metrics_json(tree.tree, scene, spec_.seed, timings);
+  json exact = to_json(tree.exact);
+  split_timings(exact, timings, "exact_", kTimings);
+  metrics["exact"] = std::move(exact);
+  json validation = exact_validation_json(tree, spec_, timings);
+  return make_record(*this, scene_identity(identity(), scene), std::move(metrics), exact_invariants_json(tree),
+                     std::move(validation), nullptr, std::move(timings), start);
+}
 
 nlohmann::json DrawJob::run(const RunContext& context) const {
   const double start = wall_seconds();
   const Scene scene = spec_.make_scene();
+  if (kernel_ == Kernel::Exact) return run_exact(context, scene, start);
   json timings = json::object();
   const Tree tree = build_once(spec_, scene);
-  const ReferenceBuild reference(scene.polygons);
-  const TimedBatches batches = time_batches([&] { build_once(spec_, scene); },
-                                            context.slowdown(spec_.heuristic_label()), [&] { reference.run(); });
-  timings["build_cpu_samples"] = batches.samples;
-  timings["build_reference_samples"] = batches.reference;
-  timings["build_cpu_builds"] = batches.runs;
-  timings["build_cpu_seconds"] = batches.median();
-
-  MetricsSettings metric_settings;  // the defaults, with the job's seed for the metric rays
-  metric_settings.seed = spec_.seed;
+  time_builds([&] { build_once(spec_, scene); }, scene, context.slowdown(spec_.heuristic_label()), timings);
   const bool flat = all_segments(scene.polygons);
-  const double cpu = thread_cpu_seconds();
-  json metrics = to_json(measure_drawing(tree, scene.polygons, metric_settings));
-  timings["metrics_cpu_seconds"] = thread_cpu_seconds() - cpu;
-  split_timings(metrics, timings, "", kTimings);
-  json id = identity();
-  id["n_polygons"] = scene.polygons.size();
-  const json described = scene_json(scene);
-  id["scene_hash"] = described["hash"];
-  id["scene_bounds"] = described["bounds"];
-  if (described.contains("load")) id["scene_load"] = described["load"];
+  json metrics = metrics_json(tree, scene, spec_.seed, timings);
   json invariants = invariants_json(tree, scene);
   json validation = validation_json(tree, spec_, flat, timings);
   json ray_shooting = flat ? nullptr : ray_shooting_json(tree, spec_);
-  return make_record(*this, std::move(id), std::move(metrics), std::move(invariants), std::move(validation),
-                     std::move(ray_shooting), std::move(timings), start);
+  return make_record(*this, scene_identity(identity(), scene), std::move(metrics), std::move(invariants),
+                     std::move(validation), std::move(ray_shooting), std::move(timings), start);
 }
 
 std::span<const TimingField> draw_timing_fields() { return kTimings; }
@@ -390,6 +500,7 @@ const Kind& draw_kind() {
       .suite_key = "blocks",
       .parse = parse_block,
       .timings = kTimings,
+      .group_by = kGroupBy,
       .growth_metrics = kGrowthMetrics,
       .growth_timings = kGrowthTimings,
       .size_growth_metrics = kSizeGrowthMetrics,

@@ -10,6 +10,11 @@
 // swept without further wiring. Sizes are the generators' `n`; a generator without one runs once at
 // its defaults, and a size outside a generator's `n` range is skipped for it. A mesh has no size: it
 // runs once per heuristic, shape and seed, the seed feeding only the heuristic.
+//
+// A block may also run each job in the exact kernel (tree/exact_build.h), as `bspbench build
+// --kernel exact` and `bspbench validate --kernel exact` do: the tree is the exact one, measured on
+// its view in doubles, its invariants and order checked exactly. Such a run's key and identity name
+// the kernel; a float run's are as they were before kernels existed.
 #include <cstdint>
 #include <span>
 #include <string>
@@ -21,6 +26,7 @@
 #include "metrics/tree_metrics.h"
 #include "split/splitter.h"
 #include "tree/build.h"
+#include "tree/exact_build.h"
 #include "tree/tree.h"
 
 namespace bsp::experiments {
@@ -69,21 +75,28 @@ struct DrawBlock final : Block {
   // One incremental build (tree/build_incremental.h, seeded shuffled order) per scene, size, shape
   // and seed instead of one build per heuristic: it consults no heuristic, so it runs once.
   bool incremental = false;
+  // Each job once per kernel; empty: float only. The exact kernel builds 3D scenes recursively,
+  // strict or coarse, so the parser refuses it with an incremental build, leafy trees or 2D scenes.
+  std::vector<Kernel> kernels;
 
   Jobs expand() const override;
 };
 
 class DrawJob final : public Job {
  public:
-  explicit DrawJob(SceneRun spec);
+  // The kernel joins the key and the identity only when it is not float.
+  explicit DrawJob(SceneRun spec, Kernel kernel = Kernel::Float);
   std::string_view kind() const override { return "draw"; }
   std::string measured_identity() const override;
   nlohmann::json identity() const override;
   nlohmann::json run(const RunContext& context) const override;
   const SceneRun& spec() const { return spec_; }
+  Kernel kernel() const { return kernel_; }
 
  private:
+  nlohmann::json run_exact(const RunContext& context, const Scene& scene, double start) const;
   SceneRun spec_;
+  Kernel kernel_;
 };
 
 // The ray-shooting walk costs far more per ray than Embree (a 40 000-fragment saddle-grid tree has
