@@ -28,6 +28,7 @@ def same(a, b):
 
 def group_of(rid):
     label = rid.get("heuristic", "?") + ("" if rid.get("shape", "strict") == "strict" else f" ({rid.get('shape')})")
+    label += f" {rid['kernel']}" if "kernel" in rid else ""
     where = rid.get("map") if rid.get("kind") == "doom" else rid.get("n")
     scene = rid.get("scene", "?") + (f" {rid['operation']}" if rid.get("kind") == "merge" else "")
     return (rid.get("kind", "draw"), scene, label, where)

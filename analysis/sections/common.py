@@ -45,6 +45,12 @@ def aggregates_of(report, wanted):
     return [a for a in report["aggregates"] if kind(a) == wanted]
 
 
+def is_float(entry):
+    """Whether an aggregate or a run's id is of the float kernel: a float run names no kernel. The
+    exact kernel's runs are the kernel section's, never mixed into the float tables."""
+    return entry.get("kernel", "float") == "float"
+
+
 def value(entry, section, name):
     """The mean over seeds of a by_n entry's metric or timing; None when it has none."""
     v = entry.get(section, {}).get(name)

@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt
 
 import stats
 from sections import verdicts
-from sections.common import DPI, Section, slug
+from sections.common import DPI, Section, is_float, slug
 from tables import Cell, Table
 
 PREDICTS = 0.8
@@ -34,12 +34,12 @@ PAIRINGS = (
 
 
 def groups(report):
-    """(scene, n) -> the drawing runs of that scene and size, every heuristic, shape and seed."""
+    """(scene, n) -> the float kernel's drawing runs of that scene and size, every heuristic, shape and seed."""
     name = verdicts.scene_namer(report)
     out = {}
     for r in report["runs"]:
         rid = r["id"]
-        if rid.get("kind", "draw") == "draw":
+        if rid.get("kind", "draw") == "draw" and is_float(rid):
             out.setdefault((name(rid), rid["n"]), []).append(r)
     return dict(sorted(out.items()))
 

@@ -14,7 +14,8 @@ import os
 import matplotlib.pyplot as plt
 
 from sections import verdicts
-from sections.common import DPI, MARKERS, METRIC_DOCS, Section, aggregates_of, doc_of, slug, summary_cell, value
+from sections.common import (DPI, MARKERS, METRIC_DOCS, Section, aggregates_of, doc_of, is_float, slug, summary_cell,
+                             value)
 from tables import Cell, Table
 
 SCALING_AXES = (("timings", "build_cpu_seconds", "build CPU time (s)"), ("metrics", "fragments", "fragments"))
@@ -30,9 +31,10 @@ def label(agg, params_vary=False):
 
 
 def by_scene(report):
-    """Scene -> its drawing aggregates, each given a "label" that tells it from the others of the scene."""
+    """Scene -> its drawing aggregates (the float kernel's; exact runs are the kernel section's), each
+    given a "label" that tells it from the others of the scene."""
     scenes = {}
-    for agg in aggregates_of(report, "draw"):
+    for agg in filter(is_float, aggregates_of(report, "draw")):
         scenes.setdefault(agg["scene"], []).append(agg)
     for aggs in scenes.values():
         vary = len({json.dumps(a.get("scene_params"), sort_keys=True) for a in aggs}) > 1

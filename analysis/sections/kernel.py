@@ -2,9 +2,13 @@
 changes — fragments it drops, pairs its order check leaves as ties, classifications that differ from the exact
 decision — and what exactness costs in build time, per heuristic and size (kernel-SCENE.png). Then merges run in
 both kernels (merge runs whose identity names the exact kernel, beside the float runs of the same pair, size,
-heuristic, operation and seed): border edges, volume against CGAL and merge time, side by side.
+heuristic, operation and seed): border edges, volume against CGAL and merge time, side by side. And the
+drawing runs built in the exact kernel (drawing blocks with "kernels"), which the drawing sections leave out:
+their trees' size, their exact order checks and how the predicates were decided, beside the float run's
+fragments where the report has it.
 """
 import html
+import json
 import os
 
 import matplotlib.pyplot as plt
@@ -216,12 +220,64 @@ def merge_part(report):
             f"columns before the times).</p>" + t.html(scroll=True)), [t]
 
 
+def drawing_key(run_id):
+    return (run_id["scene"], json.dumps(run_id.get("scene_params"), sort_keys=True), run_id["n"], run_id["heuristic"],
+            run_id["shape"], run_id["seed"])
+
+
+def exact_drawings(report):
+    """(exact drawing run, its float twin or None), for every drawing run of the exact kernel."""
+    floats, exacts = {}, []
+    for run in report.get("runs", []):
+        rid = run.get("id", {})
+        if rid.get("kind") != "draw" or "metrics" not in run:
+            continue
+        if rid.get("kernel") == "exact":
+            exacts.append(run)
+        elif "kernel" not in rid:
+            floats[drawing_key(rid)] = run
+    exacts.sort(key=lambda r: str(drawing_key(r["id"])))
+    return [(e, floats.get(drawing_key(e["id"]))) for e in exacts]
+
+
+def drawing_table(runs):
+    rows = []
+    for e, f in runs:
+        rid, m, v = e["id"], e["metrics"], e.get("validation") or {}
+        rows.append([rid["scene"], plain(rid["n"]), rid["heuristic"], rid["shape"], plain(rid["seed"]),
+                     m.get("fragments"), f["metrics"].get("fragments") if f else None, m.get("max_depth"),
+                     e["invariants"].get("violations"), v.get("violations"), v.get("ties"),
+                     m.get("exact", {}).get("predicates", {}).get("filter_rate")])
+    return Table("kernel-drawings", "drawing runs in the exact kernel",
+                 [("scene", ""), ("n", ""), ("heuristic", ""), ("shape", ""), ("seed", ""),
+                  Column("fragments", title="fragments of the exact tree"),
+                  Column("float fragments", title="the float run's of the same scene, heuristic, shape and seed"),
+                  Column("depth", title="maximum depth of the exact tree"),
+                  Column("invariant violations", title="check_exact_invariants, decided exactly"),
+                  Column("order violations", title="pairs drawn in the wrong order, every hit decided exactly"),
+                  Column("ties", title="hit pairs meeting the ray in one point (coplanar or touching fragments)"),
+                  Column("filter rate", title="side tests the floating-point filter decided")], rows)
+
+
+def drawing_part(report):
+    runs = exact_drawings(report)
+    if not runs:
+        return "", []
+    t = drawing_table(runs)
+    wrong = sum(1 for e, _ in runs if (e.get("validation") or {}).get("violations") or e["invariants"].get("violations"))
+    return (f"<h3 id='kernel-drawings'>Drawing runs in the exact kernel</h3><p>{len(runs)} drawing runs were built "
+            f"in the exact kernel (as <code>bspbench build --kernel exact</code>) and their orders checked exactly "
+            f"(as <code>bspbench validate --kernel exact</code>); {wrong} had an invariant or order violation. "
+            f"The drawing sections show the float runs only.</p>" + t.html(scroll=True)), [t]
+
+
 def render(report, ctx):
     merges_html, merge_tables = merge_part(report)
+    drawings_html, drawing_tables = drawing_part(report)
     scenes = {}
     for agg in aggregates_of(report, "kernel"):
         scenes.setdefault(agg["scene"], []).append(agg)
-    if not scenes and not merges_html:
+    if not scenes and not merges_html and not drawings_html:
         return None
     parts = ["<h2 id='kernel'>What the tolerance costs: float against exact geometry</h2>"
              "<p>Each scene is snapped to its integer grid and built twice with the same heuristic and seed: by the "
@@ -257,4 +313,6 @@ def render(report, ctx):
             parts.append(f"<h3 id='{name}'>{html.escape(title[0].upper() + title[1:])}</h3>{t.html(scroll=True)}")
     parts.append(merges_html)
     tables.extend(merge_tables)
+    parts.append(drawings_html)
+    tables.extend(drawing_tables)
     return Section([("kernel", "float against exact")], "".join(parts), tables)

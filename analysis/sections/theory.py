@@ -30,7 +30,7 @@ import math
 import statistics
 
 from sections import verdicts
-from sections.common import Section, aggregates_of
+from sections.common import Section, aggregates_of, is_float
 from tables import Cell, Table
 
 # scene -> (heuristics it applies to (empty: all), kind, exponent or None, statement)
@@ -49,10 +49,10 @@ def autopartition_bound(n):
 
 
 def series(report):
-    """(scene, heuristic, shape) -> the drawing aggregate; a generator with several parameter sets in
-    the report gives one scene per set."""
+    """(scene, heuristic, shape) -> the float kernel's drawing aggregate; a generator with several
+    parameter sets in the report gives one scene per set."""
     name = verdicts.scene_namer(report)
-    return dict(sorted(((name(a), a["heuristic"], a["shape"]), a) for a in aggregates_of(report, "draw")))
+    return dict(sorted(((name(a), a["heuristic"], a["shape"]), a) for a in aggregates_of(report, "draw") if is_float(a)))
 
 
 def sizes(agg):

@@ -18,7 +18,7 @@ import html
 import statistics
 
 import stats
-from sections.common import METRIC_DOCS, Section, slug
+from sections.common import METRIC_DOCS, Section, is_float, slug
 from tables import Cell, Table
 
 ALPHA = 0.05
@@ -61,12 +61,12 @@ def scene_namer(report):
 
 
 def groups(report):
-    """(scene name, n) -> label -> seed -> run, for drawing and merge runs."""
+    """(scene name, n) -> label -> seed -> run, for the float kernel's drawing and merge runs."""
     name = scene_namer(report)
     out = {}
     for r in report["runs"]:
         rid = r["id"]
-        if rid.get("kind", "draw") not in ("draw", "merge"):
+        if rid.get("kind", "draw") not in ("draw", "merge") or not is_float(rid):
             continue
         out.setdefault((name(rid), rid["n"]), {}).setdefault(run_label(rid), {})[rid["seed"]] = r
     return dict(sorted(out.items(), key=lambda kv: (kv[0][0], kv[0][1])))

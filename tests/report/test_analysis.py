@@ -13,7 +13,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 import stats  # noqa: E402
 import tables  # noqa: E402
-from sections import cost_model, theory, verdicts  # noqa: E402
+from sections import cost_model, draw, kernel, theory, verdicts  # noqa: E402
 
 
 def draw_run(scene, heuristic, n, seed, metrics, shape="strict", timings=None):
@@ -169,6 +169,43 @@ class Theory(unittest.TestCase):
         del report["aggregates"][0]["growth_over_sizes"]
         self.assertFalse(theory.fitted(report))
         self.assertIn("not judged", theory.top_list([], [], theory.fitted(report)))
+
+
+class ExactDrawings(unittest.TestCase):
+    """Drawing runs of the exact kernel stay out of the float sections and go to the kernel section."""
+    def report(self):
+        runs = []
+        for seed in (1, 2):
+            for h, fragments, exact_fragments in (("a", 10, 30), ("b", 20, 5)):
+                runs.append(draw_run("s", h, 100, seed, {"fragments": fragments}))
+                e = draw_run("s", h, 100, seed, {"fragments": exact_fragments, "max_depth": 4,
+                                                 "exact": {"predicates": {"filter_rate": 0.9}}})
+                e["id"]["kernel"] = "exact"
+                e["invariants"], e["validation"] = {"violations": 0}, {"violations": 0, "ties": 3}
+                runs.append(e)
+        exact_agg = dict(draw_aggregate("s", "a", (100,)), kernel="exact")
+        return {"runs": runs, "aggregates": [draw_aggregate("s", "a", (100,)), exact_agg]}
+
+    def test_float_verdicts_and_tables_leave_exact_runs_out(self):
+        report = self.report()
+        verdict = verdicts.all_verdicts(report)[("s", 100)][0][2]
+        self.assertEqual(verdict["best"], "a")  # the exact runs, mixed in, would make it b
+        self.assertEqual(len(cost_model.groups(report)[("s", 100)]), 4)
+        self.assertEqual([len(aggs) for aggs in draw.by_scene(report).values()], [1])
+        self.assertEqual(len(theory.series(report)), 1)
+        for r in report["runs"]:
+            r["id"].pop("kernel", None)
+        self.assertEqual(verdicts.all_verdicts(report)[("s", 100)][0][2]["best"], "b")
+
+    def test_the_kernel_section_lists_each_exact_run_beside_its_float_twin(self):
+        pairs = kernel.exact_drawings(self.report())
+        self.assertEqual(len(pairs), 4)
+        self.assertTrue(all(e["id"]["kernel"] == "exact" and "kernel" not in f["id"] for e, f in pairs))
+        self.assertEqual(sorted((e["metrics"]["fragments"], f["metrics"]["fragments"]) for e, f in pairs),
+                         [(5, 20), (5, 20), (30, 10), (30, 10)])
+        row = kernel.drawing_table(pairs).rows[0]
+        self.assertEqual(row[-1], 0.9)
+        self.assertEqual(kernel.drawing_part({"runs": []}), ("", []))
 
 
 class Exports(unittest.TestCase):
