@@ -37,9 +37,11 @@ std::string group_label(const nlohmann::json& id) {
   const std::string shape = !kind                              ? id.value("shape", "?")
                             : !kind->timing_group_word.empty() ? std::string(kind->timing_group_word)
                                                                : id.value(std::string(kind->timing_group_field), "?");
-  // A run of the exact kernel (merge --kernel exact) is timed apart from the float runs beside it.
-  const std::string kernel = id.contains("kernel") ? " " + id.value("kernel", "?") : "";
-  return id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + shape + kernel;
+  // A run of the exact kernel (a drawing or merge run with --kernel exact) is timed apart from the
+  // float runs beside it.
+  std::string label = id.value("scene", "?") + " " + id.value("heuristic", "?") + " " + shape;
+  if (id.contains("kernel")) label.append(" ").append(id.value("kernel", "?"));
+  return label;
 }
 
 std::string run_label(const nlohmann::json& id) {
