@@ -29,6 +29,8 @@ struct Kind {
   std::string_view name = {};       // as records' id.kind and Job::kind() say it
   std::string_view suite_key = {};  // the key of its blocks in a suite file ("blocks", "merges", ...)
   // Reads one block at `path` of the suite file; throws InputError ("FILE: PATH: problem").
+  // nullptr: the block names only data this machine lacks (meshes not fetched), which the parser
+  // said on stderr; the suite runs without it.
   std::unique_ptr<const Block> (*parse)(const BlockReader& reader, const nlohmann::json& block, const std::string& path) = nullptr;
   // Whether the parser expands each block to refuse one that runs nothing. Not where expanding
   // reads external data (Doom's IWADs), which fails with its own message when the suite expands.

@@ -128,6 +128,7 @@ Suite parse(const experiments::BlockReader& r, const json& root) {
     if (!blocks) continue;
     r.each(*blocks, key, "leave \"" + key + "\" out", [&](const json& j, const std::string& path) {
       std::shared_ptr<const experiments::Block> block = kind->parse(r, j, path);
+      if (!block) return;
       // Doom blocks are not expanded here: that reads their IWADs, which expansion does anyway.
       if (kind->expand_when_parsed) check_runs(r, *block, path);
       suite.blocks.push_back({kind, std::move(block)});

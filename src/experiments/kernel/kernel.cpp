@@ -185,6 +185,10 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
     }
   }
   if (meshes && !r.optional(j, "scenes") && r.optional(j, "sizes")) r.fail(path, "\"sizes\" without \"scenes\": meshes take no size");
+  if (meshes && !r.optional(j, "scenes") && b->meshes.empty()) {
+    std::cerr << "kernels: " << path << ": none of its meshes is fetched; the block is left out\n";
+    return nullptr;
+  }
   if (!meshes || r.optional(j, "scenes")) {
     b->scenes = r.generator_names(r.required(j, path, "scenes"), child(path, "scenes"), "kernel comparison", sized);
     b->sizes = r.generator_sizes(j, path, sized);
