@@ -28,7 +28,7 @@ GridPlane box_face(int axis, bool high, const GridBox& box) {
 }  // namespace
 
 ExactSolidSpace::ExactSolidSpace(const Grid& grid, const GridBox& box)
-    : box_(box), pool_(grid), shps_(pool_, kReusedSpan) {
+    : box_(box), pool_(grid), shps_(pool_, kReusedSpan, ExactFragments::Copies::None) {
   for (int axis = 0; axis < 3; ++axis)
     for (const bool high : {false, true}) box_planes_[2 * axis + high] = pool_.add(box_face(axis, high, box));
 }

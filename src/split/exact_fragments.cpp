@@ -96,11 +96,29 @@ FilterBox ExactFragments::box(std::uint32_t id) const {
   return b;
 }
 
+std::uint32_t ExactFragments::new_id(PlaneRef support, std::uint32_t pooled, std::uint32_t source,
+                                     std::uint32_t first, std::uint32_t count) {
+  vertices_live_ += count;
+  if (copies_ == Copies::Rounded) {
+    rounded_polygon(support, first, count, source, rounded_scratch_);
+    return rounded_.add(rounded_scratch_, pooled, kNoSphere);
+  }
+  if (free_ids_.empty()) return static_cast<std::uint32_t>(rec_.size());
+  const std::uint32_t id = free_ids_.back();
+  free_ids_.pop_back();
+  return id;
+}
+
+void ExactFragments::drop_id(std::uint32_t id) {
+  vertices_live_ -= rec_[id].count;
+  if (copies_ == Copies::Rounded) rounded_.release(id);
+  else free_ids_.push_back(id);
+}
+
 std::uint32_t ExactFragments::store(PlaneRef support, std::uint32_t pooled, std::uint32_t source,
                                     std::uint32_t first, std::uint32_t count) {
   const std::span<const VertexCofactors> cofactors(cof_.data() + first, count);
-  rounded_polygon(support, first, count, source, rounded_scratch_);
-  const std::uint32_t id = rounded_.add(rounded_scratch_, pooled, kNoSphere);
+  const std::uint32_t id = new_id(support, pooled, source, first, count);
   if (id >= rec_.size()) {
     rec_.resize(id + 1);
     support_.resize(id + 1);
@@ -158,7 +176,7 @@ std::uint32_t ExactFragments::add_pooled(std::uint32_t support, std::span<const 
 }
 
 void ExactFragments::release(std::uint32_t id) {
-  rounded_.release(id);
+  drop_id(id);
   free_span(rec_[id].first, rec_[id].count);
 }
 
@@ -486,7 +504,7 @@ std::uint32_t ExactFragments::clip(std::uint32_t id, std::uint32_t plane) {
   if (plane >= kPooled) throw std::length_error("an exact build pooled more than 2^31 planes");
   const PlaneRef support = support_[id];
   const std::uint32_t pooled = r.support, source = r.source, from = r.first, k = r.count;
-  rounded_.release(id);
+  drop_id(id);
   kept_edges(sides_, 1, kept_);
   const std::uint32_t front = add_part(support, pooled, source, from, kPooled | plane);
   free_span(from, k);
@@ -512,7 +530,7 @@ ExactFragments::Parts ExactFragments::split(std::uint32_t id, std::uint32_t plan
   const PlaneRef support = support_[id];
   const std::uint32_t pooled = rec_[id].support, source = rec_[id].source;
   const std::uint32_t from = rec_[id].first, k = rec_[id].count;
-  if (!keep_parent) rounded_.release(id);
+  if (!keep_parent) drop_id(id);
   Parts parts;
   kept_edges(sides_, 1, kept_);
   parts.front = add_part(support, pooled, source, from, cut);

@@ -46,10 +46,17 @@ struct ExactSideCounters {
 
 class ExactFragments {
  public:
+  // Whether each fragment has its rounded copy: a build's fragments do, for its splitters; a solid
+  // space's sub-hyperplanes, which no splitter reads, do not (computing the copy and storing it
+  // cost a solid's labels and merges more than a third of their time). Without copies the ids are
+  // this store's own, reused last freed first.
+  enum class Copies : std::uint8_t { Rounded, None };
+
   // Freed vertex runs of up to `reused_span` vertices are reused (FragmentStore::kReusedSpan by
   // default; a solid tree's sub-hyperplanes, clipped by every ancestor, reach dozens).
-  explicit ExactFragments(GridPlanePool& planes, std::uint32_t reused_span = FragmentStore::kReusedSpan)
-      : planes_(planes), reused_span_(reused_span) {
+  explicit ExactFragments(GridPlanePool& planes, std::uint32_t reused_span = FragmentStore::kReusedSpan,
+                          Copies copies = Copies::Rounded)
+      : planes_(planes), reused_span_(reused_span), copies_(copies) {
     rounded_.reuse_spans_up_to(reused_span);
   }
 
@@ -75,7 +82,9 @@ class ExactFragments {
   PageVector<GridPlane> release_input_planes() { return std::move(own_); }
 
   std::uint32_t plane(std::uint32_t id) const { return rec_[id].support; }  // pooled support
-  const FragmentStore& rounded() const { return rounded_; }
+  const FragmentStore& rounded() const { return rounded_; }  // empty with Copies::None
+  // The vertices of the fragments not released.
+  std::size_t vertices_live() const { return vertices_live_; }
   GridPlanePool& planes() const { return planes_; }
 
   // The fragment's side of pooled plane `plane`, exactly.
@@ -148,6 +157,10 @@ class ExactFragments {
   // One part of a split of the fragment whose slots start at `from`: the bounds at kept_ (the
   // parent's edge indices) then `cut`, the kept vertices copied, the two new ones computed.
   std::uint32_t add_part(PlaneRef support, std::uint32_t pooled, std::uint32_t source, std::uint32_t from, PlaneRef cut);
+  // An id for a new fragment: its rounded copy's, or a free one of this store's. drop_id frees it.
+  std::uint32_t new_id(PlaneRef support, std::uint32_t pooled, std::uint32_t source, std::uint32_t first,
+                       std::uint32_t count);
+  void drop_id(std::uint32_t id);
   // Registers the fragment whose bounds and vertices fill slots [first, first + count): its box,
   // its rounded copy (which gives the id), its record.
   std::uint32_t store(PlaneRef support, std::uint32_t pooled, std::uint32_t source, std::uint32_t first,
@@ -155,7 +168,10 @@ class ExactFragments {
 
   GridPlanePool& planes_;
   std::uint32_t reused_span_;
+  Copies copies_;
   FragmentStore rounded_;
+  std::vector<std::uint32_t> free_ids_;  // with Copies::None
+  std::size_t vertices_live_ = 0;
   // The input's planes as given (a support is not replaced by the pool's canonical multiple: the
   // vertices, cofactors and output are computed from the polygon's own planes), and their roundings.
   PageVector<GridPlane> own_;
