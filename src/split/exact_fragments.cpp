@@ -137,22 +137,30 @@ std::uint32_t ExactFragments::store(PlaneRef support, std::uint32_t pooled, std:
   return id;
 }
 
+static_assert(kGridBits < 53, "grid coordinates are exact in doubles");
+
 std::uint32_t ExactFragments::add(const PlanePolygon& poly, std::span<const GridPoint> corners) {
   const auto k = static_cast<std::uint32_t>(poly.size());
   const std::uint32_t first = new_span(k);
   const PlaneRef support = own(poly.support);
   for (std::uint32_t i = 0; i < k; ++i) bound_[first + i] = own(poly.bounds[i]);
   for (std::uint32_t i = 0; i < k; ++i) {
+    corner_[first + i] = kNoCorner;
+    if (!corners.empty()) {
+      // An input corner is a grid point, below 2^kGridBits in each coordinate, so exact in doubles:
+      // its cofactors are its coordinates with weight 1, without error (any positive multiple of
+      // the homogeneous point will do).
+      const GridPoint& q = corners[i];
+      cof_[first + i] = {{static_cast<double>(q.x), static_cast<double>(q.y), static_cast<double>(q.z), 1.0}, 0.0, 0.0};
+      corner_[first + i] = static_cast<std::uint32_t>(corners_.size());
+      corners_.push_back(q);
+      continue;
+    }
     const PlaneRef before = bound_[first + i], after = bound_[first + (i + 1) % k];
     const auto c = vertex_cofactors(poly.support, own_[before], own_[after], own_approx_[support], own_approx_[before],
                                     own_approx_[after], counters_.predicates);
     if (!c) throw std::invalid_argument("a plane polygon's vertex is not defined");
     cof_[first + i] = *c;
-    corner_[first + i] = kNoCorner;
-    if (!corners.empty()) {
-      corner_[first + i] = static_cast<std::uint32_t>(corners_.size());
-      corners_.push_back(corners[i]);
-    }
   }
   return store(support, planes_.add(poly.support), poly.source, first, k);
 }

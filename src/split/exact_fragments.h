@@ -8,7 +8,8 @@
 // A fragment is first tested whole, against a box in grid coordinates that contains its exact
 // vertices (FilterBox): most fragments lie clear of a plane, as in the float kernel's bounding-sphere
 // test (`boxes` counts those decided so). Otherwise each vertex is tested, cheapest way first:
-//  - the filter on the vertex's cached cofactors (geometry/exact_predicates.h: VertexCofactors);
+//  - the filter on the vertex's cached cofactors (geometry/exact_predicates.h: VertexCofactors;
+//    an input corner's are its grid coordinates and weight 1, exact);
 //  - an input corner (a vertex made by two bounds of its input polygon, so a grid point): the
 //    plane's value there in 128-bit integers, exact by grid_plane.h's bounds (`on_grid`);
 //  - otherwise the 4x4 determinant in wide integers (`exact`).
