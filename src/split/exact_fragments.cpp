@@ -519,12 +519,6 @@ std::uint32_t ExactFragments::clip(std::uint32_t id, std::uint32_t plane) {
   return front;
 }
 
-PlanePolygon ExactFragments::take(std::uint32_t id) {
-  PlanePolygon poly = polygon(id);
-  release(id);
-  return poly;
-}
-
 // The parent's slots are freed only after both parts are written, so neither part's run can be the
 // one it copies from; its id goes first, as FragmentStore::split releases before adding.
 ExactFragments::Parts ExactFragments::split(std::uint32_t id, std::uint32_t plane, bool keep_parent) {

@@ -72,9 +72,8 @@ class ExactFragments {
   // each vertex defined): what solid trees make from planes alone. Refers to the pool, copies no plane.
   std::uint32_t add_pooled(std::uint32_t support, std::span<const std::uint32_t> bounds, std::uint32_t source = 0);
   void release(std::uint32_t id);
-  // The fragment's plane polygon; take() releases the fragment.
+  // The fragment's plane polygon.
   PlanePolygon polygon(std::uint32_t id) const;
-  PlanePolygon take(std::uint32_t id);
   // Appends the fragment to `out` by reference (its planes stay here until adopted from
   // release_input_planes() and the pool) and releases it.
   void take_into(std::uint32_t id, PlanePolygonSet& out);
@@ -190,7 +189,7 @@ class ExactFragments {
   std::vector<std::vector<std::uint32_t>> free_spans_;  // by count: first slots of freed runs
   // Counts and scratch, not state: a store is used by one thread at a time.
   mutable ExactSideCounters counters_;
-  std::vector<int> sides_;  // split's
+  std::vector<int> sides_;  // split's and clip's
   std::vector<std::uint32_t> kept_;
   std::vector<PlaneApprox> bounds_approx_;
   Polygon rounded_scratch_;
