@@ -401,6 +401,12 @@ TEST(SweepSuites, MergeBlocksExpandToPairSizeHeuristicOperationAndSeed) {
   EXPECT_EQ(keys.size(), jobs.size());
 }
 
+// The float and the exact job of a block's expansion in both kernels, in either order.
+std::pair<const Job&, const Job&> float_and_exact(const experiments::Jobs& both) {
+  const bool exact_first = both[0]->identity().contains("kernel");
+  return {*both[exact_first ? 1 : 0], *both[exact_first ? 0 : 1]};
+}
+
 // "kernels" in a merge block doubles its jobs; a float job's key is the key it had before kernels
 // existed (so baselines keep matching), and an exact one's names the kernel.
 TEST(SweepSuites, MergeKernelsJoinTheKeyOnlyWhenExact) {
@@ -411,9 +417,7 @@ TEST(SweepSuites, MergeKernelsJoinTheKeyOnlyWhenExact) {
   const auto plain = jobs_of(""), both = jobs_of(R"(, "kernels": ["float", "exact"])");
   ASSERT_EQ(plain.size(), 1u);
   ASSERT_EQ(both.size(), 2u);
-  const bool exact_first = both[0]->identity().contains("kernel");
-  const auto& floating = *both[exact_first ? 1 : 0];
-  const auto& exact = *both[exact_first ? 0 : 1];
+  const auto [floating, exact] = float_and_exact(both);
   EXPECT_EQ(facts(floating).key, facts(*plain[0]).key);
   EXPECT_NE(facts(exact).key, facts(*plain[0]).key);
   EXPECT_FALSE(floating.identity().contains("kernel"));
@@ -465,9 +469,7 @@ TEST(SweepSuites, DrawKernelsJoinTheKeyOnlyWhenExact) {
   const auto both = expand(near_degenerate_suite(R"(, "kernels": ["float", "exact"])"));
   ASSERT_EQ(plain.size(), 1u);
   ASSERT_EQ(both.size(), 2u);
-  const bool exact_first = both[0]->identity().contains("kernel");
-  const auto& floating = *both[exact_first ? 1 : 0];
-  const auto& exact = *both[exact_first ? 0 : 1];
+  const auto [floating, exact] = float_and_exact(both);
   EXPECT_EQ(facts(floating).key, facts(*plain[0]).key);
   EXPECT_EQ(floating.identity(), plain[0]->identity());
   EXPECT_NE(facts(exact).key, facts(*plain[0]).key);

@@ -203,6 +203,11 @@ def merge_table(pairs):
                   Column("exact / float", title="merge time ratio")], rows)
 
 
+def subsection(anchor, title, table, text):
+    """A part of the section: its heading, a paragraph and its table; with the table for the report's index."""
+    return f"<h3 id='{anchor}'>{title}</h3><p>{text}</p>" + table.html(scroll=True), [table]
+
+
 def merge_part(report):
     pairs = merge_pairs(report)
     if not pairs:
@@ -211,13 +216,14 @@ def merge_part(report):
     exact_ok = sum(1 for _, e in pairs if e["invariants"].get("border_edges") == 0 and e["validation"].get("volume_equal")
                    and e["validation"].get("mismatches") == 0)
     float_open = sum(1 for f, _ in pairs if f["invariants"].get("border_edges"))
-    return (f"<h3 id='kernel-merges'>Merges in both kernels</h3><p>{len(pairs)} merges ran in both kernels on the "
-            f"same operands. Exact: {exact_ok} of {len(pairs)} closed, with the volume equal to CGAL's exact "
-            f"corefinement of the snapped operands and every grid point agreeing. Float: {float_open} left border "
-            f"edges in the welded boundary. Where the operands' faces were coplanar (a quad's two triangles, a "
-            f"cap's fan), snapping each vertex to the grid tilts them onto planes of their own: the exact trees then "
-            f"have more nodes than the float ones, and their merges cost more for that reason (compare the node "
-            f"columns before the times).</p>" + t.html(scroll=True)), [t]
+    return subsection("kernel-merges", "Merges in both kernels", t,
+                      f"{len(pairs)} merges ran in both kernels on the "
+                      f"same operands. Exact: {exact_ok} of {len(pairs)} closed, with the volume equal to CGAL's exact "
+                      f"corefinement of the snapped operands and every grid point agreeing. Float: {float_open} left border "
+                      f"edges in the welded boundary. Where the operands' faces were coplanar (a quad's two triangles, a "
+                      f"cap's fan), snapping each vertex to the grid tilts them onto planes of their own: the exact trees then "
+                      f"have more nodes than the float ones, and their merges cost more for that reason (compare the node "
+                      f"columns before the times).")
 
 
 def drawing_key(run_id):
@@ -265,10 +271,11 @@ def drawing_part(report):
         return "", []
     t = drawing_table(runs)
     wrong = sum(1 for e, _ in runs if (e.get("validation") or {}).get("violations") or e["invariants"].get("violations"))
-    return (f"<h3 id='kernel-drawings'>Drawing runs in the exact kernel</h3><p>{len(runs)} drawing runs were built "
-            f"in the exact kernel (as <code>bspbench build --kernel exact</code>) and their orders checked exactly "
-            f"(as <code>bspbench validate --kernel exact</code>); {wrong} had an invariant or order violation. "
-            f"The drawing sections show the float runs only.</p>" + t.html(scroll=True)), [t]
+    return subsection("kernel-drawings", "Drawing runs in the exact kernel", t,
+                      f"{len(runs)} drawing runs were built "
+                      f"in the exact kernel (as <code>bspbench build --kernel exact</code>) and their orders checked exactly "
+                      f"(as <code>bspbench validate --kernel exact</code>); {wrong} had an invariant or order violation. "
+                      f"The drawing sections show the float runs only.")
 
 
 def render(report, ctx):

@@ -145,7 +145,7 @@ std::vector<std::string> BlockReader::names(const json& j, const std::string& pa
 
 std::vector<Kernel> BlockReader::kernels(const json& object, const std::string& path) const {
   const json* j = optional(object, "kernels");
-  if (!j) return {};
+  if (!j) return {Kernel::Float};
   std::vector<Kernel> out;
   for (const auto& name : names(*j, child(path, "kernels"), "leave \"kernels\" out for float only", [](const std::string& k) {
          if (!kernel_named(k)) throw UsageError("unknown kernel '" + k + "' (float or exact)");

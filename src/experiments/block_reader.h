@@ -79,7 +79,7 @@ class BlockReader {
   // A non-empty list of distinct names, each checked by `check` (which throws what registries throw).
   std::vector<std::string> names(const json& j, const std::string& path, std::string_view if_empty,
                                  const std::function<void(const std::string&)>& check) const;
-  // The block's "kernels", distinct "float" and "exact"; empty when it has none (float only).
+  // The block's "kernels", distinct "float" and "exact"; float alone when it has none.
   std::vector<Kernel> kernels(const json& object, const std::string& path) const;
 
   // {"k": v, ...} against `specs`, each parameter checked at its own path. A generator's n and

@@ -88,11 +88,6 @@ std::vector<std::optional<HeuristicChoice>> heuristic_choices(const DrawBlock& b
   return out;
 }
 
-// The block's kernels; float alone when it names none.
-std::vector<Kernel> kernels_of(const DrawBlock& block) {
-  return block.kernels.empty() ? std::vector<Kernel>{Kernel::Float} : block.kernels;
-}
-
 SceneFile scene_file(const SceneSpec& spec) {
   std::string path = spec.path;
   if (path.empty())
@@ -107,7 +102,7 @@ void expand_mesh(const DrawBlock& block, const SceneSpec& spec, Jobs& out) {
   const SceneFile file = scene_file(spec);
   for (const auto& h : heuristic_choices(block))
     for (auto shape : block.shapes)
-      for (auto kernel : kernels_of(block))
+      for (auto kernel : block.kernels)
         for (auto seed : block.seeds)
           out.push_back(std::make_shared<DrawJob>(
               SceneRun{spec.name, {}, file, h, shape, seed, 0, block.validation.views}, kernel));
@@ -434,7 +429,7 @@ Jobs DrawBlock::expand() const {
     for (auto n : sizes_for(g, *this))
       for (const auto& h : heuristic_choices(*this))
         for (auto shape : shapes)
-          for (auto kernel : kernels_of(*this))
+          for (auto kernel : kernels)
             for (auto seed : seeds)
               out.push_back(std::make_shared<DrawJob>(
                   SceneRun::generated(g, spec.params, h, shape, seed, n, validation.views_for(n)), kernel));

@@ -75,9 +75,9 @@ struct DrawBlock final : Block {
   // One incremental build (tree/build_incremental.h, seeded shuffled order) per scene, size, shape
   // and seed instead of one build per heuristic: it consults no heuristic, so it runs once.
   bool incremental = false;
-  // Each job once per kernel; empty: float only. The exact kernel builds 3D scenes recursively,
+  // Each job once per kernel. The exact kernel builds 3D scenes recursively,
   // strict or coarse, so the parser refuses it with an incremental build, leafy trees or 2D scenes.
-  std::vector<Kernel> kernels;
+  std::vector<Kernel> kernels = {Kernel::Float};
 
   Jobs expand() const override;
 };

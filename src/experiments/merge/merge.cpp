@@ -217,7 +217,7 @@ Jobs MergeBlock::expand() const {
     for (auto n : pair_sizes(pair, *this))
       for (const auto& h : choices_or_all(heuristics))
         for (auto op : all_ops)
-          for (auto kernel : kernels.empty() ? std::vector<Kernel>{Kernel::Float} : kernels)
+          for (auto kernel : kernels)
             for (auto seed : seeds)
               out.push_back(std::make_shared<MergeJob>(MergeSpec{pair.name, n, h, op, seed, points, kernel}));
   }

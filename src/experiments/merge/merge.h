@@ -26,7 +26,7 @@ struct MergeBlock final : Block {
   std::vector<std::uint64_t> sizes;     // polygons per operand, within the pair's range; unsized pairs run once
   std::vector<std::uint64_t> seeds;
   std::uint64_t points = 0;             // classified against CGAL's exact answer per run
-  std::vector<Kernel> kernels;          // empty: float only
+  std::vector<Kernel> kernels = {Kernel::Float};
 
   Jobs expand() const override;
 };
