@@ -67,13 +67,16 @@ constexpr int kReferenceRepeats = 5;  // timed runs of each reference; their med
 // Primary rays per view side for the traversal's paired reference: 64^2 rays per view take about
 // half as long as a back-to-front traversal of 10^5 fragments, long enough to time on its own.
 constexpr int kRayGrid = 64;
-// Builds of a million polygons take seconds, so Google Benchmark's minimum time would allow one
-// run, and a median of one is no median: from this size on, builds run a fixed number of times.
-constexpr std::uint64_t kLargeN = 1000000;
-constexpr benchmark::IterationCount kLargeBuildRuns = 3;
+// A build of 10^5 polygons takes up to a second and one of 10^6 seconds, so Google Benchmark's
+// minimum time would allow one run, and a median of one is no median (one disturbed run then
+// decides the gated ratio): from this size on, builds run a fixed number of times, and the median
+// of 5 outvotes two disturbed runs.
+constexpr std::uint64_t kFixedBuildRunsN = 100000;
+constexpr benchmark::IterationCount kBuildRuns = 5;
 // Runs of the 8 views at 10^6, where the library's minimum time would stop at one or two: the
 // median of 5 is what the ratio to the sort's median of kReferenceRepeats is taken from.
-constexpr benchmark::IterationCount kLargeTraversalRuns = 5;
+constexpr std::uint64_t kFixedTraversalRunsN = 1000000;
+constexpr benchmark::IterationCount kTraversalRuns = 5;
 
 using Clock = std::chrono::steady_clock;
 
@@ -238,11 +241,11 @@ void register_all(const Selection& sel) {
           auto* b = benchmark::RegisterBenchmark(("scaling/build" + tail + "/threads:" + std::to_string(threads)).c_str(),
                                                  bm_build_vs_embree, s, h, tail, threads);
           b->Unit(benchmark::kMillisecond)->UseRealTime();
-          if (n >= kLargeN) b->Iterations(kLargeBuildRuns);
+          if (n >= kFixedBuildRunsN) b->Iterations(kBuildRuns);
         }
         auto* t = benchmark::RegisterBenchmark(("scaling/traverse" + tail).c_str(), bm_traverse_vs_sort, s, h);
         t->Unit(benchmark::kMillisecond)->UseRealTime();
-        if (n >= kLargeN) t->Iterations(kLargeTraversalRuns);
+        if (n >= kFixedTraversalRunsN) t->Iterations(kTraversalRuns);
       }
     }
 }
