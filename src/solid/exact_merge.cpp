@@ -34,12 +34,71 @@ ExactSolidTree combined(const ExactSolidTree& a, const ExactSolidTree& b, Ref& b
   return w;
 }
 
+// The sub-hyperplanes a merge makes, each held by one node of the work array at a time: a node
+// partitionTree passes on whole (Figure 7's T on one side) hands its sub-hyperplane to its
+// replacement, a complement's copy takes the original's, and a node whose sub-hyperplane is split
+// leaves the parts to two new nodes. A made sub-hyperplane is released as soon as its node is
+// garbage (split, or in a subtree a cell operation drops), so the store holds about what the
+// merge's live trees hold rather than everything the merge ever made; the operands' are never
+// released. Nodes below `first_made_node` are the operands' (combined()), which point only to
+// operands' nodes.
+class MadeShps {
+ public:
+  MadeShps(const ExactSolidTree& a, const ExactSolidTree& b, ExactFragments& store, Ref first_made_node)
+      : store_(store), first_made_node_(first_made_node) {
+    for (const auto* t : {&a, &b})
+      for (const std::uint32_t id : t->shp) mark(operand_, id);
+  }
+  bool made_node(Ref r) const { return !is_leaf(r) && r >= first_made_node_; }
+  bool operands(std::uint32_t id) const { return id < operand_.size() && operand_[id]; }
+  void add(std::uint32_t id) { mark(live_, id); }
+  // The sub-hyperplane leaves the merge's keeping (its node is garbage); the caller releases it.
+  void forget(std::uint32_t id) {
+    if (id >= live_.size() || !live_[id]) broken("a made sub-hyperplane dropped twice");
+    live_[id] = false;
+  }
+  void release(std::uint32_t id) {
+    forget(id);
+    store_.release(id);
+  }
+  // Releases the made sub-hyperplanes of a dropped subtree (a cell operation's Out or In).
+  void drop(const ExactSolidTree& w, Ref t) {
+    if (!made_node(t)) return;
+    stack_.assign(1, t);
+    while (!stack_.empty()) {
+      const Ref r = stack_.back();
+      stack_.pop_back();
+      if (!operands(w.shp[r])) release(w.shp[r]);  // a node the merge made may hold an operand's
+      for (const Ref c : {w.nodes[r].front, w.nodes[r].back})
+        if (made_node(c)) stack_.push_back(c);
+    }
+  }
+  // Releases the live made sub-hyperplanes the result does not hold.
+  void release_unused(const ExactSolidTree& result) {
+    std::vector<bool> used(live_.size(), false);
+    for (const std::uint32_t id : result.shp)
+      if (id < used.size()) used[id] = true;
+    for (std::uint32_t id = 0; id < live_.size(); ++id)
+      if (live_[id] && !used[id]) release(id);
+  }
+
+ private:
+  static void mark(std::vector<bool>& bits, std::uint32_t id) {
+    if (id >= bits.size()) bits.resize(std::max<std::size_t>(id + 1, bits.size() * 2), false);
+    bits[id] = true;
+  }
+  ExactFragments& store_;
+  Ref first_made_node_;
+  std::vector<bool> operand_, live_;
+  std::vector<Ref> stack_;
+};
+
 // partitionTree (§4.1) as merge.h's Partitioner, exact. The pieces of shp(t1) made while
 // descending are only looked at, and released as soon as they are; the parts of shp(T) become
-// nodes' sub-hyperplanes, and are listed in `made`.
+// nodes' sub-hyperplanes (MadeShps).
 class ExactPartitioner {
  public:
-  ExactPartitioner(ExactSolidTree& work, ExactSolidSpace& space, MergeStats& stats, std::vector<std::uint32_t>& made)
+  ExactPartitioner(ExactSolidTree& work, ExactSolidSpace& space, MergeStats& stats, MadeShps& made)
       : w_(work), store_(space.shps()), stats_(stats), made_(made) {}
 
   struct Parts {
@@ -126,10 +185,13 @@ class ExactPartitioner {
       const Parts front = parts_.back();
       parts_.pop_back();
       if (s != Side::Spanning) broken("shp(t1) spans h(T) but shp(T) does not span h(t1)");
-      const ExactFragments::Parts p = store_.split(shp_t, h, true);
+      // T is garbage now: a sub-hyperplane the merge made goes with it, an operand's stays.
+      const bool operands = made_.operands(shp_t);
+      if (!operands) made_.forget(shp_t);
+      const ExactFragments::Parts p = store_.split(shp_t, h, operands);
       ++stats_.shp_splits;
-      made_.push_back(p.front);
-      made_.push_back(p.back);
+      made_.add(p.front);
+      made_.add(p.back);
       return {node(n.plane, p.front, front.plus, back.plus), node(n.plane, p.back, front.minus, back.minus)};
     }
     // shp(t1) lies in one subtree X of T; the other, Y, lies wholly on the side of h(t1) that shp(T)
@@ -149,16 +211,15 @@ class ExactPartitioner {
   ExactSolidTree& w_;
   ExactFragments& store_;
   MergeStats& stats_;
-  std::vector<std::uint32_t>& made_;
+  MadeShps& made_;
   std::vector<Frame> frames_;
   std::vector<Parts> parts_;
 };
 
 class ExactMerger {
  public:
-  ExactMerger(ExactSolidTree& work, ExactSolidSpace& space, const CellTable& table, MergeStats& stats,
-              std::vector<std::uint32_t>& made)
-      : w_(work), table_(table), stats_(stats), partitioner_(work, space, stats, made) {}
+  ExactMerger(ExactSolidTree& work, ExactSolidSpace& space, const CellTable& table, MergeStats& stats, MadeShps& made)
+      : w_(work), table_(table), stats_(stats), made_(made), partitioner_(work, space, stats, made) {}
 
   Ref merge(Ref a_root, Ref b_root) {
     struct Frame {
@@ -200,8 +261,8 @@ class ExactMerger {
     const CellResult r = a_is_cell ? table_.first_leaf[a == kIn] : table_.second_leaf[b == kIn];
     const Ref tree = a_is_cell ? b : a;
     switch (r) {
-      case CellResult::Out: return kOut;
-      case CellResult::In: return kIn;
+      case CellResult::Out: made_.drop(w_, tree); return kOut;
+      case CellResult::In: made_.drop(w_, tree); return kIn;
       case CellResult::Tree: return tree;
       case CellResult::Complement: return complement(tree);
     }
@@ -234,6 +295,7 @@ class ExactMerger {
   ExactSolidTree& w_;
   const CellTable& table_;
   MergeStats& stats_;
+  MadeShps& made_;
   ExactPartitioner partitioner_;
 };
 
@@ -298,19 +360,13 @@ ExactSolidTree merge_with_table(const ExactSolidTree& a, const ExactSolidTree& b
   const auto start = Clock::now();
   Ref b_root = kOut;
   ExactSolidTree work = combined(a, b, b_root);
-  std::vector<std::uint32_t> made;
+  MadeShps made(a, b, space.shps(), static_cast<Ref>(work.nodes.size()));
   work.root = ExactMerger(work, space, table, st, made).merge(a.root, b_root);
   st.merge_seconds = seconds_since(start);
   st.before = solid_size(work);
   const auto reduce_start = Clock::now();
   ExactSolidTree result = reduce(work);
-  std::uint32_t ids = 0;
-  for (const std::uint32_t id : made) ids = std::max(ids, id + 1);
-  std::vector<bool> used(ids, false);
-  for (const std::uint32_t id : result.shp)
-    if (id < ids) used[id] = true;
-  for (const std::uint32_t id : made)
-    if (!used[id]) space.shps().release(id);
+  made.release_unused(result);
   st.reduce_seconds = seconds_since(reduce_start);
   st.after = solid_size(result);
   return result;
