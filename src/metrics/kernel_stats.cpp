@@ -7,7 +7,7 @@ namespace bsp {
 nlohmann::json to_json(const ExactBuildStats& s) {
   const SnapReport& r = s.snap;
   const ExactSideCounters& c = s.sides;
-  const std::uint64_t tests = c.predicates.filtered + c.predicates.exact + c.on_grid;
+  const std::uint64_t tests = c.predicates.filtered + c.predicates.exact + c.on_grid + c.on_bound;
   return {{"snap",
            {{"vertices", r.vertices.vertices},
             {"moved", r.vertices.moved},
@@ -25,6 +25,7 @@ nlohmann::json to_json(const ExactBuildStats& s) {
            {{"filtered", c.predicates.filtered},
             {"exact", c.predicates.exact},
             {"on_grid", c.on_grid},
+            {"on_bound", c.on_bound},
             {"coplanar_by_index", c.coplanar_by_index},
             {"boxes", c.boxes},
             {"filter_rate", tests ? static_cast<double>(c.predicates.filtered) / static_cast<double>(tests) : 1.0}}},

@@ -196,7 +196,8 @@ PlanePolygon ExactFragments::polygon(std::uint32_t id) const {
   return out;
 }
 
-int ExactFragments::vertex_side(std::uint32_t id, std::size_t i, const GridPlane& plane, const PlaneApprox& approx) const {
+int ExactFragments::vertex_side(std::uint32_t id, std::size_t i, std::uint32_t pooled, const GridPlane& plane,
+                                const PlaneApprox& approx) const {
   const std::size_t slot = rec_[id].first + i;
   if (const auto f = detail::filtered_side(cof_[slot], approx); f.decided) {
     ++counters_.predicates.filtered;
@@ -207,8 +208,14 @@ int ExactFragments::vertex_side(std::uint32_t id, std::size_t i, const GridPlane
     return plane.side(corners_[corner_[slot]]);
   }
   const Record& r = rec_[id];
-  return side_of_vertex(plane_of(support_[id]), plane_of(bound_[slot]), plane_of(bound_[r.first + (i + 1) % r.count]),
-                        plane, counters_.predicates);
+  const PlaneRef before = bound_[slot], after = bound_[r.first + (i + 1) % r.count];
+  // A vertex a cut made lies on the cut: a merge tests its pieces against that plane again, and
+  // the filter cannot decide a zero. Pooled planes are canonical, so equal indices are equal planes.
+  if (on_pooled(before, pooled) || on_pooled(after, pooled)) {
+    ++counters_.on_bound;
+    return 0;
+  }
+  return side_of_vertex(plane_of(support_[id]), plane_of(before), plane_of(after), plane, counters_.predicates);
 }
 
 Side ExactFragments::classify(std::uint32_t id, std::uint32_t plane) const {
@@ -247,7 +254,7 @@ Side ExactFragments::vertex_sides(std::uint32_t id, std::uint32_t plane, const P
   if (i < r.count) {
     const GridPlane p = planes_[plane];
     for (; i < r.count; ++i) {
-      const int s = vertex_side(id, i, p, approx);
+      const int s = vertex_side(id, i, plane, p, approx);
       if (sides) sides[i] = s;
       front |= s > 0;
       back |= s < 0;

@@ -12,6 +12,8 @@
 //    an input corner's are its grid coordinates and weight 1, exact);
 //  - an input corner (a vertex made by two bounds of its input polygon, so a grid point): the
 //    plane's value there in 128-bit integers, exact by grid_plane.h's bounds (`on_grid`);
+//  - a vertex bound by the plane itself (a cut's vertex tested against the cut again, as merging
+//    does): on it, by pooled index (`on_bound`);
 //  - otherwise the 4x4 determinant in wide integers (`exact`).
 // A fragment whose support is the plane, in either orientation, is coplanar without a test: pooled
 // planes are canonical, so equal planes have equal indices.
@@ -41,6 +43,7 @@ namespace bsp {
 struct ExactSideCounters {
   PredicateCounters predicates;  // filtered, and decided in wide integers
   std::uint64_t on_grid = 0;     // decided at an input corner in 128-bit integers
+  std::uint64_t on_bound = 0;    // vertices on the plane because it bounds them (pooled index)
   std::uint64_t coplanar_by_index = 0;  // fragments found coplanar by their pooled support
   std::uint64_t boxes = 0;              // fragments decided whole by their box
 };
@@ -131,8 +134,14 @@ class ExactFragments {
   PlaneApprox approx_of(PlaneRef r) const { return (r & kPooled) ? planes_.approx(r & ~kPooled) : own_approx_[r]; }
   FilterBox box(std::uint32_t id) const;
 
-  // Side of vertex i of fragment id: +1, -1 or 0.
-  int vertex_side(std::uint32_t id, std::size_t i, const GridPlane& plane, const PlaneApprox& approx) const;
+  // Side of vertex i of fragment id of pooled plane `pooled` (`plane`, `approx`): +1, -1 or 0.
+  int vertex_side(std::uint32_t id, std::size_t i, std::uint32_t pooled, const GridPlane& plane,
+                  const PlaneApprox& approx) const;
+  // Whether a vertex bound by plane reference r lies on pooled plane `pooled`: r is that pooled
+  // plane, in either orientation.
+  static bool on_pooled(PlaneRef r, std::uint32_t pooled) {
+    return (r & kPooled) != 0 && PlanePool::coplanar(r & ~kPooled, pooled);
+  }
   // Front/Back/Coplanar/Spanning from the fragment's vertices alone (no whole-fragment test),
   // stopping at the first vertex that makes it Spanning unless `sides` is given: then every
   // vertex's side is written there (+1, -1, 0), as split needs them.
