@@ -175,9 +175,13 @@ class ExactPartitioner {
 
   Ref node(std::uint32_t plane, std::uint32_t shp, Ref front, Ref back) { return w_.add_node(plane, shp, front, back); }
 
+  // T's parts. A part whose two children are one leaf is that leaf (what reduce() would make of
+  // it), and the part of shp(T) it would have held is never computed. T itself is garbage
+  // afterwards: a sub-hyperplane the merge made goes with it unless a part takes it whole.
   Parts combine(const Frame& f, std::uint32_t h) {
     const ExactSolidNode n = w_.nodes[f.t];
     const std::uint32_t shp_t = w_.shp[f.t];
+    const bool operands = made_.operands(shp_t);
     const Side s = store_.classify(shp_t, h);
     if (f.kind == Kind::InBoth) {
       const Parts back = parts_.back();
@@ -185,14 +189,13 @@ class ExactPartitioner {
       const Parts front = parts_.back();
       parts_.pop_back();
       if (s != Side::Spanning) broken("shp(t1) spans h(T) but shp(T) does not span h(t1)");
-      // T is garbage now: a sub-hyperplane the merge made goes with it, an operand's stays.
-      const bool operands = made_.operands(shp_t);
-      if (!operands) made_.forget(shp_t);
-      const ExactFragments::Parts p = store_.split(shp_t, h, operands);
-      ++stats_.shp_splits;
-      made_.add(p.front);
-      made_.add(p.back);
-      return {node(n.plane, p.front, front.plus, back.plus), node(n.plane, p.back, front.minus, back.minus)};
+      const bool plus_leaf = same_leaf(front.plus, back.plus), minus_leaf = same_leaf(front.minus, back.minus);
+      Parts out{front.plus, front.minus};
+      if (!plus_leaf || !minus_leaf) ++stats_.shp_splits;
+      if (!plus_leaf) out.plus = node(n.plane, part_of(shp_t, h), front.plus, back.plus);
+      if (!minus_leaf) out.minus = node(n.plane, part_of(shp_t, PlanePool::flip(h)), front.minus, back.minus);
+      if (!operands) made_.release(shp_t);
+      return out;
     }
     // shp(t1) lies in one subtree X of T; the other, Y, lies wholly on the side of h(t1) that shp(T)
     // is on (Figure 7), and T keeps its node, with shp(T) whole, on that side only.
@@ -202,10 +205,24 @@ class ExactPartitioner {
     const bool x_is_front = f.kind == Kind::InFront;
     const Ref y = x_is_front ? n.back : n.front;
     const auto with_y = [&](Ref x_part) {
+      if (same_leaf(x_part, y)) {
+        if (!operands) made_.release(shp_t);
+        return y;
+      }
       return x_is_front ? node(n.plane, shp_t, x_part, y) : node(n.plane, shp_t, y, x_part);
     };
     if (s == Side::Front) return {with_y(x.plus), x.minus};
     return {x.plus, with_y(x.minus)};
+  }
+
+  static bool same_leaf(Ref a, Ref b) { return is_leaf(a) && a == b; }
+
+  // The part of shp(T) in front of pooled plane `h`, made alone; shp(T) stays.
+  std::uint32_t part_of(std::uint32_t shp_t, std::uint32_t h) {
+    const std::uint32_t part = store_.clip(shp_t, h, true);
+    if (part == shp_t || part == kNone) broken("shp(T) does not span h(t1)");
+    made_.add(part);
+    return part;
   }
 
   ExactSolidTree& w_;
@@ -248,7 +265,8 @@ class ExactMerger {
       results.pop_back();
       const Ref front = results.back();
       results.pop_back();
-      results.push_back(w_.add_node(w_.nodes[f.a].plane, w_.shp[f.a], front, back));
+      // Two children of one leaf are that leaf, as reduce() would make them.
+      results.push_back(is_leaf(front) && front == back ? front : w_.add_node(w_.nodes[f.a].plane, w_.shp[f.a], front, back));
       frames.pop_back();
     }
     return results.back();

@@ -109,7 +109,8 @@ Ref Merger::merge(Ref a_root, Ref b_root) {
     const Ref front = results.back();
     results.pop_back();
     const SolidNode na = w_.nodes[f.a];
-    results.push_back(w_.add_node(na.plane, w_.shp[f.a], front, back));
+    // Two children of one leaf are that leaf, as reduce() would make them.
+    results.push_back(is_leaf(front) && front == back ? front : w_.add_node(na.plane, w_.shp[f.a], front, back));
     frames.pop_back();
   }
   return results.back();
@@ -204,11 +205,10 @@ RegionSide region_side(const SolidTree& s, Ref v, const std::vector<Plane>& path
 
 }  // namespace
 
-Partitioner::Partitioner(SolidTree& work, MergeStats& stats, bool collapse_uniform)
-    : w_(work), stats_(stats), eps_(work.tol.plane_eps), collapse_uniform_(collapse_uniform) {}
+Partitioner::Partitioner(SolidTree& work, MergeStats& stats) : w_(work), stats_(stats), eps_(work.tol.plane_eps) {}
 
 Ref Partitioner::node(const Plane& plane, std::uint32_t shp, Ref front, Ref back) {
-  if (collapse_uniform_ && is_leaf(front) && front == back) return front;
+  if (collapses(front, back)) return front;
   return w_.add_node(plane, shp, front, back);
 }
 
@@ -288,12 +288,13 @@ Partitioner::Parts Partitioner::partition_combine(const PartFrame& f, const Plan
     const Parts front = parts_.back();
     parts_.pop_back();
     if (classify_loop(w_.loops[shp_t], node.plane, h, eps_) != Side::Spanning) ++stats_.inconsistent;
+    // A part that collapses to a leaf needs no sub-hyperplane.
+    const bool plus = !collapses(front.plus, back.plus), minus = !collapses(front.minus, back.minus);
+    if (!plus && !minus) return {front.plus, front.minus};
     split_loop(w_.loops[shp_t], h, 0.0, front_, back_);
     ++stats_.shp_splits;
-    const std::uint32_t shp_plus = w_.loops.add(front_);
-    const std::uint32_t shp_minus = w_.loops.add(back_);
-    return {this->node(node.plane, shp_plus, front.plus, back.plus),
-            this->node(node.plane, shp_minus, front.minus, back.minus)};
+    return {plus ? this->node(node.plane, w_.loops.add(front_), front.plus, back.plus) : front.plus,
+            minus ? this->node(node.plane, w_.loops.add(back_), front.minus, back.minus) : front.minus};
   }
   // shp(t1) lies in one subtree X of T; the other, Y, lies wholly on the side of h(t1) that shp(T)
   // is on (Figure 7), and T keeps its node on that side only.

@@ -44,7 +44,7 @@ struct MergeStats {
   // shp(T) did not span h(t1), or the reverse): resolved by the farther side; the region involved
   // is within plane_eps of both planes.
   std::uint64_t inconsistent = 0;
-  SolidSize before;  // the merged tree as built
+  SolidSize before;  // the merged tree as built (parts and merge steps of one leaf already collapsed)
   SolidSize after;   // after reduce()
   double merge_seconds = 0;
   double reduce_seconds = 0;
@@ -56,10 +56,10 @@ struct MergeStats {
 // Merging uses it, and so does view-volume culling, which merges as it traverses.
 class Partitioner {
  public:
-  // With collapse_uniform, a part whose two children are the same leaf is that leaf, so a part
-  // holding nothing of the solid is OUT at once (what view-volume culling needs to skip a side);
-  // merging leaves that to reduce(), to report the sizes before and after.
-  Partitioner(SolidTree& work, MergeStats& stats, bool collapse_uniform = false);
+  // A part whose two children are the same leaf is that leaf, so a part holding nothing of the
+  // solid is OUT at once (what view-volume culling needs to skip a side), and merging never
+  // partitions, or cuts sub-hyperplanes for, what reduce() would remove.
+  Partitioner(SolidTree& work, MergeStats& stats);
   struct Parts {
     Ref plus, minus;  // T+ and T-
   };
@@ -77,12 +77,12 @@ class Partitioner {
   void partition_descend(std::size_t top, const Plane& h);
   Parts partition_combine(const PartFrame& f, const Plane& h);
   bool shp_in_front(Ref t, const Plane& h);
+  static bool collapses(Ref front, Ref back) { return is_leaf(front) && front == back; }
   Ref node(const Plane& plane, std::uint32_t shp, Ref front, Ref back);
 
   SolidTree& w_;
   MergeStats& stats_;
   const double eps_;
-  const bool collapse_uniform_;
   std::vector<PartFrame> frames_;
   std::vector<Parts> parts_;
   std::vector<Vec3> front_, back_;

@@ -57,7 +57,7 @@ std::vector<std::uint32_t> merged_visibility_order(const Tree& scene, const Frus
   const std::vector<Plane> planes = frustum_planes(frustum);
   SolidTree work = convex_volume_tree(planes, box);
   MergeStats stats;
-  Partitioner partitioner(work, stats, true);
+  Partitioner partitioner(work, stats);
   const double eps = scene.tol.plane_eps;
   const auto emit = [&](std::uint32_t i) { out.push_back(i); };
   std::vector<Step> stack{{0, false, work.root, 0, {}}};

@@ -496,33 +496,35 @@ void ExactFragments::take_into(std::uint32_t id, PlanePolygonSet& out) {
   release(id);
 }
 
-std::uint32_t ExactFragments::clip(std::uint32_t id, std::uint32_t plane) {
+std::uint32_t ExactFragments::clip(std::uint32_t id, std::uint32_t plane, bool keep_parent) {
   const Record& r = rec_[id];
   if (PlanePool::coplanar(plane, r.support)) {
     ++counters_.coplanar_by_index;
     return id;
   }
+  const auto behind = [&] {
+    if (!keep_parent) release(id);
+    return FragmentStore::kNone;
+  };
   const PlaneApprox approx = planes_.approx(plane);
   if (const auto whole = detail::filtered_box_side(box(id), approx); whole.decided) {
     ++counters_.boxes;
-    if (whole.sign > 0) return id;
-    release(id);
-    return FragmentStore::kNone;
+    return whole.sign > 0 ? id : behind();
   }
   sides_.resize(r.count);
   switch (vertex_sides(id, plane, approx, sides_.data())) {
     case Side::Front:
     case Side::Coplanar: return id;
-    case Side::Back: release(id); return FragmentStore::kNone;
+    case Side::Back: return behind();
     case Side::Spanning: break;
   }
   if (plane >= kPooled) throw std::length_error("an exact build pooled more than 2^31 planes");
   const PlaneRef support = support_[id];
   const std::uint32_t pooled = r.support, source = r.source, from = r.first, k = r.count;
-  drop_id(id);
+  if (!keep_parent) drop_id(id);
   kept_edges(sides_, 1, kept_);
   const std::uint32_t front = add_part(support, pooled, source, from, kPooled | plane);
-  free_span(from, k);
+  if (!keep_parent) free_span(from, k);
   return front;
 }
 

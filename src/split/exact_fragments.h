@@ -104,8 +104,9 @@ class ExactFragments {
   Parts split(std::uint32_t id, std::uint32_t plane, bool keep_parent = false);
   // The part of the fragment in front of pooled plane `plane` or on it: the fragment itself when
   // it lies there whole; FragmentStore::kNone when it lies behind; else the front part of a split,
-  // made alone (the back part is never computed). The fragment is released unless returned.
-  std::uint32_t clip(std::uint32_t id, std::uint32_t plane);
+  // made alone (the back part is never computed). The fragment is released unless returned or
+  // keep_parent (split's).
+  std::uint32_t clip(std::uint32_t id, std::uint32_t plane, bool keep_parent = false);
 
   const ExactSideCounters& counters() const { return counters_; }
 
