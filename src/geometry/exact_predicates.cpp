@@ -79,6 +79,25 @@ double to_double(Int128 v) {
 double to_magnitude(Int128 v) { return std::abs(to_double(v)); }
 Exact to_exact(Int128 v) { return Exact(v); }
 
+// The exact fallback's widths (bounds in the header): a normal coefficient fits Int128; a 2x2
+// minor of normals, below 2^167, fits 3 limbs; det N, below 2^252, fits 4; d det N, below 2^377,
+// and the sum of four of them, below 2^379, fit 6.
+using NormalMinor2 = WideInt<3>;
+using NormalMinor3 = WideInt<4>;
+using OffsetTimesMinor = WideInt<6>;
+static_assert(kNormalBits + kNormalBits + 1 < 64 * 3 - 1);
+static_assert(kNormalBits + kNormalBits + 1 + kNormalBits + 2 < 64 * 4 - 1);
+static_assert(kOffsetBits + (3 * kNormalBits + 3) + 2 < 64 * 6 - 1);
+
+// det of the normals of rows r0, r1, r2 of p, along the first column.
+NormalMinor3 narrow_normals_det(const GridPlane* const* p, int r0, int r1, int r2) {
+  const auto minor2 = [&](int i, int j) {  // of columns (b, c), rows i and j
+    return NormalMinor2(p[i]->b) * NormalMinor2(p[j]->c) - NormalMinor2(p[j]->b) * NormalMinor2(p[i]->c);
+  };
+  const auto term = [&](int i, int j, int k) { return NormalMinor3(p[i]->a) * NormalMinor3(minor2(j, k)); };
+  return (term(r0, r1, r2) - term(r1, r0, r2)) + term(r2, r0, r1);
+}
+
 detail::MaybeSign decide(double det, double permanent, int roundings) {
   if (permanent == 0) return {true, 0};
   // (m + 1) * 2^-53 is exact; the product rounds once, which the bound allows for.
@@ -105,11 +124,18 @@ MaybeSign filtered_planes_sign(const GridPlane& p1, const GridPlane& p2, const G
 }
 
 int exact_normals_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3) {
-  return det3<Exact, false>(normals<Exact>(p1, p2, p3, to_exact)).sign();
+  const GridPlane* p[] = {&p1, &p2, &p3};
+  return narrow_normals_det(p, 0, 1, 2).sign();
 }
 
+// Along the offset column: det M = sum over i of (-1)^(i + 3) d_i det N_i, N_i the normals
+// without row i, each in the narrowest width that holds it (see the header).
 int exact_planes_sign(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const GridPlane& p4) {
-  return det4<Exact, false>(planes<Exact>(p1, p2, p3, p4, to_exact)).sign();
+  const GridPlane* p[] = {&p1, &p2, &p3, &p4};
+  const auto term = [&](int i, int r0, int r1, int r2) {
+    return OffsetTimesMinor(p[i]->d) * OffsetTimesMinor(narrow_normals_det(p, r0, r1, r2));
+  };
+  return ((term(1, 0, 2, 3) - term(0, 1, 2, 3)) + (term(3, 0, 1, 2) - term(2, 0, 1, 3))).sign();
 }
 
 }  // namespace detail

@@ -21,10 +21,11 @@
 // Nothing underflows (nonzero terms are at least 1) or overflows (below 2^380). Contraction into
 // fused multiply-adds only removes roundings, so the bound holds for any -ffp-contract setting.
 //
-// Stage 2, the fallback: the same expansion in WideInt<7> (448 bits), exact because the result
-// fits (and so does every partial result) (kNormalBits = 83, kOffsetBits = 125): det N < 3 * 2 * 2^249 < 2^252; det M's 2x2
-// minors of the columns (c, d) < 2^209, its 3x3 minors < 3 * 2^83 * 2^209 < 2^294, det M < 4 * 2^83
-// * 2^294 < 2^380.
+// Stage 2, the fallback: det M expanded along the offsets, det M = sum_i (-1)^(i+3) d_i det N_i
+// (N_i the normals without row i), each partial result in the narrowest WideInt that holds it
+// (kNormalBits = 83, kOffsetBits = 125): the 2x2 minors of normals < 2 * 2^166 = 2^167 (3 limbs),
+// det N_i < 3 * 2^83 * 2^167 < 2^252 (4 limbs), d_i det N_i < 2^377 and their sum < 2^379 (6
+// limbs); det N alone is the same det N_i.
 #include <cmath>
 #include <cstdint>
 #include <optional>

@@ -28,6 +28,15 @@ class WideInt {
     for (int i = 2; i < Limbs; ++i) limb_[i] = fill;
   }
 
+  // Sign-extends a narrower integer (same value).
+  template <int Narrower>
+  constexpr explicit WideInt(const WideInt<Narrower>& v) : limb_{} {
+    static_assert(Narrower <= Limbs, "widening only");
+    for (int i = 0; i < Narrower; ++i) limb_[i] = v.limb(i);
+    const std::uint64_t fill = v.sign() < 0 ? ~std::uint64_t{0} : 0;
+    for (int i = Narrower; i < Limbs; ++i) limb_[i] = fill;
+  }
+
   constexpr WideInt operator+(const WideInt& o) const {
     WideInt r;
     unsigned carry = 0;
