@@ -144,8 +144,9 @@ class ExactPartitioner {
     }
     ++stats_.partition_nodes;
     const ExactSolidNode node = w_.nodes[f.t];
-    if (PlanePool::coplanar(node.plane, h)) {  // h(t1) = h(T): T's sides are h(t1)'s
+    if (PlanePool::coplanar(node.plane, h)) {  // h(t1) = h(T): T's sides are h(t1)'s, T is garbage
       done_with(f);
+      if (!made_.operands(w_.shp[f.t])) made_.release(w_.shp[f.t]);
       parts_.push_back(node.plane == h ? Parts{node.front, node.back} : Parts{node.back, node.front});
       frames_.pop_back();
       return;
