@@ -193,8 +193,16 @@ class ExactPartitioner {
       const bool plus_leaf = same_leaf(front.plus, back.plus), minus_leaf = same_leaf(front.minus, back.minus);
       Parts out{front.plus, front.minus};
       if (!plus_leaf || !minus_leaf) ++stats_.shp_splits;
-      if (!plus_leaf) out.plus = node(n.plane, part_of(shp_t, h), front.plus, back.plus);
-      if (!minus_leaf) out.minus = node(n.plane, part_of(shp_t, PlanePool::flip(h)), front.minus, back.minus);
+      if (!plus_leaf && !minus_leaf) {  // both parts: one pass over shp(T)'s vertices
+        const ExactFragments::Parts p = store_.split(shp_t, h, true);
+        made_.add(p.front);
+        made_.add(p.back);
+        out = {node(n.plane, p.front, front.plus, back.plus), node(n.plane, p.back, front.minus, back.minus)};
+      } else if (!plus_leaf) {
+        out.plus = node(n.plane, part_of(shp_t, h), front.plus, back.plus);
+      } else if (!minus_leaf) {
+        out.minus = node(n.plane, part_of(shp_t, PlanePool::flip(h)), front.minus, back.minus);
+      }
       if (!operands) made_.release(shp_t);
       return out;
     }
