@@ -294,7 +294,7 @@ TEST(KernelComparison, PerturbedInputKeepsBothTreesInvariants) {
   EXPECT_GT(c.metrics["snap_fanned"].get<std::uint64_t>(), 0u);  // the exact kernel saw bent quads too
 }
 
-// count_sides (blocks of planes, the box pass in SSE2 or AVX, the vertex pass) counts exactly what
+// count_sides (blocks of planes, the box pass on each vector path, the vertex pass) counts exactly what
 // classify decides one pair at a time: random triangles and their split parts against 1 to 33 of
 // their own planes (odd counts, partial blocks, each fragment's own support among them).
 TEST(ExactFragments, CountSidesEqualsClassifyingEachPair) {
@@ -315,23 +315,27 @@ TEST(ExactFragments, CountSidesEqualsClassifyingEachPair) {
   }
   std::vector<std::uint32_t> planes;
   for (std::size_t k = 0; k < 33; ++k) planes.push_back(frags.plane(ids[(k * 7) % ids.size()]) ^ (k & 1u));
-  for (std::size_t count : {1u, 2u, 3u, 4u, 5u, 31u, 32u, 33u}) {
-    const std::span<const std::uint32_t> some(planes.data(), count);
-    std::vector<SideCounts> counted(count);
-    frags.count_sides(ids, some, counted);
-    for (std::size_t j = 0; j < count; ++j) {
-      SideCounts one;
-      for (auto id : ids) switch (frags.classify(id, some[j])) {
-          case Side::Front: ++one.front; break;
-          case Side::Back: ++one.back; break;
-          case Side::Coplanar: ++one.coplanar; break;
-          case Side::Spanning: ++one.spanning; break;
-        }
-      EXPECT_EQ(counted[j].front, one.front) << count << " " << j;
-      EXPECT_EQ(counted[j].back, one.back) << count << " " << j;
-      EXPECT_EQ(counted[j].coplanar, one.coplanar) << count << " " << j;
-      EXPECT_EQ(counted[j].spanning, one.spanning) << count << " " << j;
-      EXPECT_EQ(one.front + one.back + one.coplanar + one.spanning, ids.size());
+  for (VectorPath path : {VectorPath::Widest, VectorPath::Baseline}) {
+    frags.use_vector_path(path);
+    const std::string on = runs_avx(path) ? "AVX " : "baseline ";
+    for (std::size_t count : {1u, 2u, 3u, 4u, 5u, 31u, 32u, 33u}) {
+      const std::span<const std::uint32_t> some(planes.data(), count);
+      std::vector<SideCounts> counted(count);
+      frags.count_sides(ids, some, counted);
+      for (std::size_t j = 0; j < count; ++j) {
+        SideCounts one;
+        for (auto id : ids) switch (frags.classify(id, some[j])) {
+            case Side::Front: ++one.front; break;
+            case Side::Back: ++one.back; break;
+            case Side::Coplanar: ++one.coplanar; break;
+            case Side::Spanning: ++one.spanning; break;
+          }
+        EXPECT_EQ(counted[j].front, one.front) << on << count << " " << j;
+        EXPECT_EQ(counted[j].back, one.back) << on << count << " " << j;
+        EXPECT_EQ(counted[j].coplanar, one.coplanar) << on << count << " " << j;
+        EXPECT_EQ(counted[j].spanning, one.spanning) << on << count << " " << j;
+        EXPECT_EQ(one.front + one.back + one.coplanar + one.spanning, ids.size());
+      }
     }
   }
   EXPECT_GT(frags.counters().boxes, 1000u);  // the box pass decided most pairs

@@ -369,8 +369,8 @@ TEST(FragmentStore, StoresNoTextureCoordinatesUnlessAsked) {
   EXPECT_TRUE(store.view(id).uv.empty());
 }
 
-// The batched count (one pass over the fragments for a block of planes, two planes per vector
-// instruction) against one count_sides per plane: the same counts and the same number of side
+// The batched count (one pass over the fragments for a block of planes, on each vector path: four
+// planes per AVX instruction where the processor has AVX, two per SSE2 one) against one count_sides per plane: the same counts and the same number of side
 // tests, for block sizes around the vector width and the block (odd, 32, 33, past two blocks), and
 // for the ties a sphere test cannot decide: planes through vertices, through a sphere's edge, and
 // the fragments' own planes.
@@ -404,20 +404,24 @@ TEST(FragmentStore, CountingManyPlanesAtOnceMatchesOnePlaneAtATime) {
     }
   }
   const double eps = 1e-9;
-  for (std::size_t k : {1u, 2u, 7u, 31u, 32u, 33u, 70u}) {
-    const std::span<const Plane> block(planes.data(), k);
-    std::vector<SideCounts> batched(k);
-    const std::uint64_t before = store.side_tests();
-    store.count_sides(ids, block, eps, batched);
-    const std::uint64_t batched_tests = store.side_tests() - before;
-    for (std::size_t j = 0; j < k; ++j) {
-      const SideCounts one = store.count_sides(ids, block[j], eps);
-      EXPECT_EQ(batched[j].front, one.front) << "k " << k << " plane " << j;
-      EXPECT_EQ(batched[j].back, one.back) << "k " << k << " plane " << j;
-      EXPECT_EQ(batched[j].coplanar, one.coplanar) << "k " << k << " plane " << j;
-      EXPECT_EQ(batched[j].spanning, one.spanning) << "k " << k << " plane " << j;
+  for (VectorPath path : {VectorPath::Widest, VectorPath::Baseline}) {
+    store.use_vector_path(path);
+    const std::string on = runs_avx(path) ? "AVX" : "baseline";
+    for (std::size_t k : {1u, 2u, 3u, 5u, 7u, 31u, 32u, 33u, 70u}) {
+      const std::span<const Plane> block(planes.data(), k);
+      std::vector<SideCounts> batched(k);
+      const std::uint64_t before = store.side_tests();
+      store.count_sides(ids, block, eps, batched);
+      const std::uint64_t batched_tests = store.side_tests() - before;
+      for (std::size_t j = 0; j < k; ++j) {
+        const SideCounts one = store.count_sides(ids, block[j], eps);
+        EXPECT_EQ(batched[j].front, one.front) << on << " k " << k << " plane " << j;
+        EXPECT_EQ(batched[j].back, one.back) << on << " k " << k << " plane " << j;
+        EXPECT_EQ(batched[j].coplanar, one.coplanar) << on << " k " << k << " plane " << j;
+        EXPECT_EQ(batched[j].spanning, one.spanning) << on << " k " << k << " plane " << j;
+      }
+      EXPECT_EQ(store.side_tests() - before - batched_tests, batched_tests) << on << " k " << k;
     }
-    EXPECT_EQ(store.side_tests() - before - batched_tests, batched_tests) << "k " << k;
   }
 }
 

@@ -272,21 +272,24 @@ namespace {
 // The planes of one count_block call as arrays of their coefficients and magnitudes, padded with
 // zero planes (which never decide: 0 > 0 is false) to a multiple of four lanes, with a front and a
 // back counter per plane (FragmentStore's PlaneBlock, for boxes). The counters are doubles, exact
-// below 2^53, so that a vector path adds its comparison mask ANDed with 1.0.
+// below 2^53, so that a vector path adds its comparison mask ANDed with 1.0. Only the lanes the
+// call uses are written (most nodes are small and count few planes).
 struct BoxPlaneBlock {
   static constexpr std::size_t kSize = FragmentStore::kPlaneBlock;
   static_assert(kSize % 4 == 0, "whole groups of four lanes");
   alignas(32) double a[kSize], b[kSize], c[kSize], d[kSize], qa[kSize], qb[kSize], qc[kSize], qd[kSize];
-  alignas(32) double front[kSize] = {}, back[kSize] = {};
+  alignas(32) double front[kSize], back[kSize];
   std::size_t k = 0;
   std::uint32_t all = 0;  // a bit per plane of the call
 
   BoxPlaneBlock(const GridPlanePool& pool, std::span<const std::uint32_t> planes)
       : k(planes.size()), all(planes.size() == kSize ? ~0u : (1u << planes.size()) - 1) {
-    for (std::size_t j = 0; j < kSize; ++j) {
+    const std::size_t lanes = (k + 3) / 4 * 4;
+    for (std::size_t j = 0; j < lanes; ++j) {
       const PlaneApprox p = j < k ? pool.approx(planes[j]) : PlaneApprox{};
       a[j] = p.a, b[j] = p.b, c[j] = p.c, d[j] = p.d;
       qa[j] = std::abs(p.a), qb[j] = std::abs(p.b), qc[j] = std::abs(p.c), qd[j] = std::abs(p.d);
+      front[j] = back[j] = 0;
     }
   }
 };
@@ -399,11 +402,13 @@ __attribute__((target("avx"))) void undecided_avx(BoxPlaneBlock& blk, const Reco
 }
 #endif
 
-// The widest path this processor runs; all give the same bits.
-void undecided_by_box(BoxPlaneBlock& blk, const Record* rec, const VertexCofactors* cof, std::span<const std::uint32_t> ids,
-                      std::uint32_t* open) {
+// The path asked for, as this processor runs it; all give the same bits.
+void undecided_by_box(VectorPath path, BoxPlaneBlock& blk, const Record* rec, const VertexCofactors* cof,
+                      std::span<const std::uint32_t> ids, std::uint32_t* open) {
 #if defined(BSP_BOX_AVX)
-  if (__builtin_cpu_supports("avx")) return undecided_avx(blk, rec, cof, ids, open);
+  if (runs_avx(path)) return undecided_avx(blk, rec, cof, ids, open);
+#else
+  (void)path;
 #endif
 #if defined(__SSE2__)
   undecided_sse2(blk, rec, cof, ids, open);
@@ -432,7 +437,7 @@ void ExactFragments::count_block(std::span<const std::uint32_t> ids, std::span<c
   std::uint32_t open[kCountChunk];
   for (std::size_t first = 0; first < ids.size(); first += kCountChunk) {
     const std::span<const std::uint32_t> chunk = ids.subspan(first, std::min(kCountChunk, ids.size() - first));
-    undecided_by_box(block, rec_.data(), cof_.data(), chunk, open);
+    undecided_by_box(vector_path_, block, rec_.data(), cof_.data(), chunk, open);
     for (std::size_t n = 0; n < chunk.size(); ++n)
       if (open[n] != 0) count_vertices(chunk[n], open[n], planes, out);
   }

@@ -33,6 +33,7 @@
 
 #include "geometry/grid_plane_pool.h"
 #include "common/page_allocator.h"
+#include "common/vector_path.h"
 #include "geometry/plane_polygon.h"
 #include "geometry/plane_polygon_set.h"
 #include "split/fragment_store.h"
@@ -95,6 +96,8 @@ class ExactFragments {
   // Counts of ids on each side of each plane, added to out[j] for planes[j] (SideCounts).
   void count_sides(std::span<const std::uint32_t> ids, std::span<const std::uint32_t> planes,
                    std::span<SideCounts> out) const;
+  // The vector instructions count_sides's box pass runs on (Widest unless a test asks for the other).
+  void use_vector_path(VectorPath path) { vector_path_ = path; }
   // Splits a fragment classified Spanning by pooled plane `plane` and releases it (unless
   // keep_parent: a solid tree's sub-hyperplane stays its node's when merging cuts a copy); the parts
   // keep its support and source. Both parts exist (nothing is a sliver in the exact kernel).
@@ -199,6 +202,7 @@ class ExactFragments {
   std::vector<std::vector<std::uint32_t>> free_spans_;  // by count: first slots of freed runs
   // Counts and scratch, not state: a store is used by one thread at a time.
   mutable ExactSideCounters counters_;
+  VectorPath vector_path_ = VectorPath::Widest;
   std::vector<int> sides_;  // split's and clip's
   std::vector<std::uint32_t> kept_;
   std::vector<PlaneApprox> bounds_approx_;

@@ -10,6 +10,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 namespace bsp {
 
@@ -155,73 +158,172 @@ void FragmentStore::count_sides(std::span<const std::uint32_t> ids, std::span<co
 
 namespace {
 
-// The planes of a count_block call as arrays of their components, padded to an even count.
+// The planes of a count_block call as arrays of their components, padded with zero planes to a
+// multiple of four lanes, with a front and a back counter per plane. A zero plane never decides
+// (0 - r > eps and 0 + r < -eps are false for r, eps >= 0) and its counters are never read. The
+// counters are doubles, exact below 2^53, so a vector path adds its comparison mask ANDed with 1.0
+// (AVX has no 256-bit integer add). Only the lanes the call uses are written: most nodes are
+// small, count few planes, and would otherwise spend more on filling the block than on counting.
 struct PlaneBlock {
-  alignas(16) double nx[FragmentStore::kPlaneBlock], ny[FragmentStore::kPlaneBlock], nz[FragmentStore::kPlaneBlock],
-      d[FragmentStore::kPlaneBlock];
-  alignas(16) std::int64_t front[FragmentStore::kPlaneBlock] = {}, back[FragmentStore::kPlaneBlock] = {};
+  static constexpr std::size_t kSize = FragmentStore::kPlaneBlock;
+  static_assert(kSize % 4 == 0, "whole groups of four lanes");
+  alignas(32) double nx[kSize], ny[kSize], nz[kSize], d[kSize];
+  alignas(32) double front[kSize], back[kSize];
   std::size_t k = 0;
+  std::uint32_t all = 0;  // a bit per plane of the call
 
-  explicit PlaneBlock(std::span<const Plane> planes) : k(planes.size()) {
-    for (std::size_t j = 0; j < FragmentStore::kPlaneBlock; ++j) {
+  explicit PlaneBlock(std::span<const Plane> planes)
+      : k(planes.size()), all(planes.size() == kSize ? ~0u : (1u << planes.size()) - 1) {
+    const std::size_t lanes = (k + 3) / 4 * 4;
+    for (std::size_t j = 0; j < lanes; ++j) {
       const Plane p = j < k ? planes[j] : Plane{};
       nx[j] = p.n.x, ny[j] = p.n.y, nz[j] = p.n.z, d[j] = p.d;
+      front[j] = back[j] = 0;
     }
-  }
-
-  // Counts the planes the sphere is wholly in front of or behind; returns a bit per plane it
-  // straddles (or whose distance is not a number), which classify's per-vertex path decides.
-  std::uint32_t undecided_by_sphere(const BoundingSphere& s, double eps) {
-#if defined(__SSE2__)
-    // Two planes per instruction, in Plane::distance's order: ((nx*cx + ny*cy) + nz*cz) + d.
-    const __m128d cx = _mm_set1_pd(s.center.x), cy = _mm_set1_pd(s.center.y), cz = _mm_set1_pd(s.center.z);
-    const __m128d r = _mm_set1_pd(s.radius), pos = _mm_set1_pd(eps), neg = _mm_set1_pd(-eps);
-    std::uint32_t decided = 0;
-    for (std::size_t j = 0; j < k; j += 2) {
-      const __m128d dist = _mm_add_pd(
-          _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_load_pd(nx + j), cx), _mm_mul_pd(_mm_load_pd(ny + j), cy)),
-                     _mm_mul_pd(_mm_load_pd(nz + j), cz)),
-          _mm_load_pd(d + j));
-      const __m128d f = _mm_cmpgt_pd(_mm_sub_pd(dist, r), pos), b = _mm_cmplt_pd(_mm_add_pd(dist, r), neg);
-      auto* fv = reinterpret_cast<__m128i*>(front + j);
-      auto* bv = reinterpret_cast<__m128i*>(back + j);
-      _mm_store_si128(fv, _mm_sub_epi64(_mm_load_si128(fv), _mm_castpd_si128(f)));  // a true lane is -1
-      _mm_store_si128(bv, _mm_sub_epi64(_mm_load_si128(bv), _mm_castpd_si128(b)));
-      decided |= static_cast<std::uint32_t>(_mm_movemask_pd(_mm_or_pd(f, b))) << j;
-    }
-#else
-    std::uint32_t decided = 0;
-    for (std::size_t j = 0; j < k; ++j) {
-      const double dist = nx[j] * s.center.x + ny[j] * s.center.y + nz[j] * s.center.z + d[j];
-      const bool f = dist - s.radius > eps, b = dist + s.radius < -eps;
-      front[j] += f;
-      back[j] += b;
-      decided |= static_cast<std::uint32_t>(f || b) << j;
-    }
-#endif
-    const std::uint32_t all = k == FragmentStore::kPlaneBlock ? ~0u : (1u << k) - 1;
-    return ~decided & all;
   }
 };
 
+// How many fragments ahead the sphere pass asks for a sphere: the ids are known in advance, the
+// spheres are scattered through the store.
+constexpr std::size_t kSpherePrefetch = 8;
+
+// Asks for the cache lines of a fragment's vertices, which the vertex pass reads for each plane
+// its sphere straddles: that pass follows within a chunk, so the lines arrive while the other
+// spheres are tested instead of one miss after another.
+inline void prefetch_points(std::span<const Vec3> points) {
+  const char* p = reinterpret_cast<const char*>(points.data());
+  const std::size_t bytes = points.size_bytes();
+  for (std::size_t off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
+  __builtin_prefetch(p + bytes - 1);
+}
+
+// Each path below tests every fragment's sphere against every plane of the block as classify()
+// does, in Plane::distance's order, ((nx*cx + ny*cy) + nz*cz) + d, then dist - r > eps and
+// dist + r < -eps, each rounded alike in a vector lane (no fused multiply-add), so all give the
+// same bits; it counts the spheres decided and writes, per fragment, a bit per plane its sphere
+// straddles (or whose distance is not a number: no comparison with NaN holds), which the vertex
+// pass decides. `spheres` and `points` look a fragment up by id.
+
+#if defined(__SSE2__)
+// Two planes per instruction: SSE2 is the x86-64 baseline.
+template <class Spheres, class Points>
+void straddled_sse2(PlaneBlock& blk, Spheres spheres, Points points, std::span<const std::uint32_t> ids, double eps,
+                    std::uint32_t* open) {
+  const __m128d pos = _mm_set1_pd(eps), neg = _mm_set1_pd(-eps), one = _mm_set1_pd(1.0);
+  for (std::size_t n = 0; n < ids.size(); ++n) {
+    if (n + kSpherePrefetch < ids.size()) __builtin_prefetch(&spheres(ids[n + kSpherePrefetch]));
+    const BoundingSphere& s = spheres(ids[n]);
+    const __m128d cx = _mm_set1_pd(s.center.x), cy = _mm_set1_pd(s.center.y), cz = _mm_set1_pd(s.center.z);
+    const __m128d r = _mm_set1_pd(s.radius);
+    std::uint32_t decided = 0;
+    for (std::size_t j = 0; j < blk.k; j += 2) {
+      const __m128d dist = _mm_add_pd(
+          _mm_add_pd(_mm_add_pd(_mm_mul_pd(_mm_load_pd(blk.nx + j), cx), _mm_mul_pd(_mm_load_pd(blk.ny + j), cy)),
+                     _mm_mul_pd(_mm_load_pd(blk.nz + j), cz)),
+          _mm_load_pd(blk.d + j));
+      const __m128d f = _mm_cmpgt_pd(_mm_sub_pd(dist, r), pos), b = _mm_cmplt_pd(_mm_add_pd(dist, r), neg);
+      _mm_store_pd(blk.front + j, _mm_add_pd(_mm_load_pd(blk.front + j), _mm_and_pd(f, one)));
+      _mm_store_pd(blk.back + j, _mm_add_pd(_mm_load_pd(blk.back + j), _mm_and_pd(b, one)));
+      decided |= static_cast<std::uint32_t>(_mm_movemask_pd(_mm_or_pd(f, b))) << j;
+    }
+    open[n] = ~decided & blk.all;
+    if (open[n] != 0) prefetch_points(points(ids[n]));
+  }
+}
+#else
+template <class Spheres, class Points>
+void straddled_scalar(PlaneBlock& blk, Spheres spheres, Points points, std::span<const std::uint32_t> ids, double eps,
+                      std::uint32_t* open) {
+  for (std::size_t n = 0; n < ids.size(); ++n) {
+    const BoundingSphere& s = spheres(ids[n]);
+    std::uint32_t decided = 0;
+    for (std::size_t j = 0; j < blk.k; ++j) {
+      const double dist = blk.nx[j] * s.center.x + blk.ny[j] * s.center.y + blk.nz[j] * s.center.z + blk.d[j];
+      const bool f = dist - s.radius > eps, b = dist + s.radius < -eps;
+      blk.front[j] += f;
+      blk.back[j] += b;
+      decided |= static_cast<std::uint32_t>(f || b) << j;
+    }
+    open[n] = ~decided & blk.all;
+    if (open[n] != 0) prefetch_points(points(ids[n]));
+  }
+}
+#endif
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define BSP_SPHERE_AVX 1
+// Four planes per instruction where the processor has AVX (asked at run time: the build targets
+// the x86-64 baseline). The same operations as straddled_sse2, lane for lane.
+template <class Spheres, class Points>
+__attribute__((target("avx"))) void straddled_avx(PlaneBlock& blk, Spheres spheres, Points points,
+                                                  std::span<const std::uint32_t> ids, double eps, std::uint32_t* open) {
+  const __m256d pos = _mm256_set1_pd(eps), neg = _mm256_set1_pd(-eps), one = _mm256_set1_pd(1.0);
+  for (std::size_t n = 0; n < ids.size(); ++n) {
+    if (n + kSpherePrefetch < ids.size()) __builtin_prefetch(&spheres(ids[n + kSpherePrefetch]));
+    const BoundingSphere& s = spheres(ids[n]);
+    const __m256d cx = _mm256_set1_pd(s.center.x), cy = _mm256_set1_pd(s.center.y), cz = _mm256_set1_pd(s.center.z);
+    const __m256d r = _mm256_set1_pd(s.radius);
+    std::uint32_t decided = 0;
+    for (std::size_t j = 0; j < blk.k; j += 4) {
+      const __m256d dist = _mm256_add_pd(
+          _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_load_pd(blk.nx + j), cx),
+                                      _mm256_mul_pd(_mm256_load_pd(blk.ny + j), cy)),
+                        _mm256_mul_pd(_mm256_load_pd(blk.nz + j), cz)),
+          _mm256_load_pd(blk.d + j));
+      const __m256d f = _mm256_cmp_pd(_mm256_sub_pd(dist, r), pos, _CMP_GT_OQ);
+      const __m256d b = _mm256_cmp_pd(_mm256_add_pd(dist, r), neg, _CMP_LT_OQ);
+      _mm256_store_pd(blk.front + j, _mm256_add_pd(_mm256_load_pd(blk.front + j), _mm256_and_pd(f, one)));
+      _mm256_store_pd(blk.back + j, _mm256_add_pd(_mm256_load_pd(blk.back + j), _mm256_and_pd(b, one)));
+      decided |= static_cast<std::uint32_t>(_mm256_movemask_pd(_mm256_or_pd(f, b))) << j;
+    }
+    open[n] = ~decided & blk.all;
+    if (open[n] != 0) prefetch_points(points(ids[n]));
+  }
+}
+#endif
+
+// The path asked for, as this processor runs it; all give the same bits.
+template <class Spheres, class Points>
+void straddled(VectorPath path, PlaneBlock& blk, Spheres spheres, Points points, std::span<const std::uint32_t> ids,
+               double eps, std::uint32_t* open) {
+#if defined(BSP_SPHERE_AVX)
+  if (runs_avx(path)) return straddled_avx(blk, spheres, points, ids, eps, open);
+#else
+  (void)path;
+#endif
+#if defined(__SSE2__)
+  straddled_sse2(blk, spheres, points, ids, eps, open);
+#else
+  straddled_scalar(blk, spheres, points, ids, eps, open);
+#endif
+}
+
 }  // namespace
 
-// A padded lane (plane j >= k, all zero) may count; its counters are never read.
+// Two passes per chunk of fragments: their spheres against the block (the vector loop, branch-free,
+// which prefetches the vertices of the straddling), then the vertices of each fragment against each
+// plane its sphere straddles.
 void FragmentStore::count_block(std::span<const std::uint32_t> ids, std::span<const Plane> planes, double eps,
                                 std::span<SideCounts> out) const {
   PlaneBlock block(planes);
-  for (auto id : ids) {
-    side_tests_ += block.k;
-    for (std::uint32_t open = block.undecided_by_sphere(sphere_[id], eps); open != 0; open &= open - 1) {
-      const auto j = static_cast<std::size_t>(std::countr_zero(open));
-      side_tests_ += span_[id].count;
-      switch (bsp::classify(points(id), planes[j], eps)) {
-        case Side::Front: ++block.front[j]; break;
-        case Side::Back: ++block.back[j]; break;
-        case Side::Coplanar: ++out[j].coplanar; break;
-        case Side::Spanning: ++out[j].spanning; break;
+  const auto spheres = [this](std::uint32_t id) -> const BoundingSphere& { return sphere_[id]; };
+  const auto vertices = [this](std::uint32_t id) { return points(id); };
+  std::uint32_t open[kCountChunk];
+  for (std::size_t first = 0; first < ids.size(); first += kCountChunk) {
+    const std::span<const std::uint32_t> chunk = ids.subspan(first, std::min(kCountChunk, ids.size() - first));
+    straddled(vector_path_, block, spheres, vertices, chunk, eps, open);
+    side_tests_ += block.k * chunk.size();
+    for (std::size_t n = 0; n < chunk.size(); ++n)
+      for (std::uint32_t straddling = open[n]; straddling != 0; straddling &= straddling - 1) {
+        const auto j = static_cast<std::size_t>(std::countr_zero(straddling));
+        side_tests_ += span_[chunk[n]].count;
+        switch (bsp::classify(points(chunk[n]), planes[j], eps)) {
+          case Side::Front: ++out[j].front; break;
+          case Side::Back: ++out[j].back; break;
+          case Side::Coplanar: ++out[j].coplanar; break;
+          case Side::Spanning: ++out[j].spanning; break;
+        }
       }
-    }
   }
   for (std::size_t j = 0; j < block.k; ++j) {
     out[j].front += static_cast<std::uint32_t>(block.front[j]);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/page_allocator.h"
+#include "common/vector_path.h"
 #include "geometry/fragment_array.h"
 #include "geometry/plane.h"
 #include "geometry/polygon.h"
@@ -45,7 +46,10 @@ class FragmentStore {
   static constexpr std::size_t kGrowthRoom = 2;
   // Planes count_sides tests in one pass: their components and counts stay in L1 beside the loop.
   static constexpr std::size_t kPlaneBlock = 32;
-  static_assert(kPlaneBlock <= 32 && kPlaneBlock % 2 == 0, "a bit per plane in a 32-bit mask, planes in pairs");
+  static_assert(kPlaneBlock <= 32 && kPlaneBlock % 4 == 0, "a bit per plane in a 32-bit mask, planes in fours");
+  // Fragments count_sides tests against a block's spheres before their vertices: the vertices of
+  // those whose sphere some plane straddles are prefetched meanwhile.
+  static constexpr std::size_t kCountChunk = 32;
 
   // Texture coordinates are kept only when `tex_coords` (some input vertex has non-zero ones).
   FragmentStore() = default;
@@ -93,11 +97,15 @@ class FragmentStore {
   // count_sides for several planes in one pass over the fragments, added to out[j] for planes[j]
   // (out has planes.size() entries, zeroed for a fresh count): each
   // fragment's sphere is read once and tested against a block of planes held as arrays of their
-  // components, two planes per SSE2 instruction (the x86-64 baseline; scalar elsewhere), without a
-  // branch; only a plane the sphere straddles takes the per-vertex path. The same operations in
-  // the same order as classify(), each rounded alike in a vector lane, so the same counts.
+  // components, four planes per AVX instruction where the processor has AVX (asked at run time),
+  // else two per SSE2 instruction (the x86-64 baseline; scalar elsewhere), without a branch; only
+  // a plane the sphere straddles takes the per-vertex path, a chunk of fragments later. The same
+  // operations in the same order as classify(), each rounded alike in a vector lane, so the same
+  // counts on every path (common/vector_path.h).
   void count_sides(std::span<const std::uint32_t> ids, std::span<const Plane> planes, double eps,
                    std::span<SideCounts> out) const;
+  // The vector instructions count_sides runs on (Widest unless a test asks for the other path).
+  void use_vector_path(VectorPath path) { vector_path_ = path; }
 
   // Splits fragment `id` (classified Spanning) by the plane as bsp::split does and releases it; the
   // parts keep its supporting plane and source.
@@ -120,6 +128,7 @@ class FragmentStore {
   Span new_span(std::uint32_t count);
 
   bool tex_ = false;
+  VectorPath vector_path_ = VectorPath::Widest;
   std::uint32_t reused_span_ = kReusedSpan;
   PageVector<Vec3> pos_;
   PageVector<TexCoord> uv_;  // parallel to pos_ when tex_, else empty
