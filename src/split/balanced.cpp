@@ -3,7 +3,7 @@
 // fragments; a spanning one lands on both sides and so does not change |front − back|. The
 // method scores every face (candidates = 0); the default samples, as every scorer of the suite
 // does, so that builds scale.
-// Cost per node: O(m log m) + O(k·s) classifications (s = sample, or m; candidates.h).
+// Cost per node: O(m) + O(k·s) classifications (s = sample, or m; candidates.h).
 #include <cstdlib>
 #include <utility>
 
@@ -24,8 +24,8 @@ class BalancedSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     Rng rng(stream_seed(seed_, ctx.node_key));
-    const auto candidates = candidate_fragments(ctx, candidates_, rng, marks_);
-    const SideCounter count(ctx, sample_, rng);
+    const auto candidates = candidate_fragments(ctx, candidates_, rng, scratch_);
+    const SideCounter count(ctx, sample_, rng, scratch_);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [](std::uint32_t, const SideCounts& c) {
       const auto imbalance = c.front > c.back ? c.front - c.back : c.back - c.front;
       return std::pair{imbalance, c.spanning};
@@ -34,7 +34,7 @@ class BalancedSplitter final : public Splitter {
 
  private:
   std::uint64_t candidates_, sample_, seed_;
-  PlaneMarks marks_;  // candidate_fragments' scratch
+  CandidateScratch scratch_;
 };
 
 }  // namespace

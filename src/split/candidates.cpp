@@ -19,13 +19,19 @@ ParamSpec candidates_param(double default_k, const std::string& doc_suffix) {
 
 namespace {
 
+// How many fragments ahead distinct_plane_positions asks for a fragment's pooled plane index.
+constexpr std::size_t kPlanePrefetch = 8;
+
 // Positions in ctx.ids of the first fragment on each distinct plane pair, ascending.
-std::vector<std::uint32_t> distinct_plane_positions(const SplitContext& ctx, PlaneMarks& marks) {
+void distinct_plane_positions(const SplitContext& ctx, PlaneMarks& marks, std::vector<std::uint32_t>& positions) {
   marks.begin(ctx.planes.size() / 2);
-  std::vector<std::uint32_t> positions;
-  for (std::uint32_t i = 0; i < ctx.ids.size(); ++i)
+  positions.clear();
+  const std::size_t m = ctx.ids.size();
+  for (std::uint32_t i = 0; i < m; ++i) {
+    // The fragments' planes are scattered through the store; the ids ahead are known.
+    if (i + kPlanePrefetch < m) ctx.frags.prefetch_plane(ctx.ids[i + kPlanePrefetch]);
     if (marks.first_sight(ctx.frags.plane(ctx.ids[i]) >> 1)) positions.push_back(i);
-  return positions;
+  }
 }
 
 }  // namespace
@@ -38,17 +44,19 @@ void PlaneMarks::begin(std::size_t pairs) {
   }
 }
 
-std::vector<std::uint32_t> candidate_fragments(const SplitContext& ctx, std::size_t k, Rng& rng, PlaneMarks& marks) {
-  std::vector<std::uint32_t> positions = distinct_plane_positions(ctx, marks);
+std::span<const std::uint32_t> candidate_fragments(const SplitContext& ctx, std::size_t k, Rng& rng,
+                                                   CandidateScratch& scratch) {
+  std::vector<std::uint32_t>& positions = scratch.positions;
+  distinct_plane_positions(ctx, scratch.marks, positions);
   if (k > 0 && k < positions.size()) {
     // Partial Fisher-Yates: the first k entries become a uniform sample without replacement.
     for (std::size_t i = 0; i < k; ++i) std::swap(positions[i], positions[i + rng.below(positions.size() - i)]);
     positions.resize(k);
     std::sort(positions.begin(), positions.end());
   }
-  std::vector<std::uint32_t> ids(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) ids[i] = ctx.ids[positions[i]];
-  return ids;
+  scratch.candidates.resize(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) scratch.candidates[i] = ctx.ids[positions[i]];
+  return scratch.candidates;
 }
 
 ParamSpec sample_param(double default_s) {
@@ -58,7 +66,8 @@ ParamSpec sample_param(double default_s) {
           default_s, 0, 1e9, {}};
 }
 
-SideCounter::SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng) : ctx_(ctx) {
+SideCounter::SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng, CandidateScratch& scratch)
+    : ctx_(ctx), scratch_(scratch) {
   const std::size_t m = ctx.ids.size();
   if (s == 0 || s >= m) return;
   std::vector<std::uint32_t> positions(m);
@@ -71,20 +80,20 @@ SideCounter::SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng) : ctx
   scale_ = static_cast<double>(m) / static_cast<double>(s);
 }
 
-std::vector<SideCounts> SideCounter::operator()(std::span<const std::uint32_t> candidates) const {
+std::span<const SideCounts> SideCounter::operator()(std::span<const std::uint32_t> candidates) const {
   const std::span<const std::uint32_t> counted = sampled_.empty() ? ctx_.ids : std::span<const std::uint32_t>(sampled_);
+  std::vector<SideCounts>& counts = scratch_.counts;
+  counts.assign(candidates.size(), SideCounts{});
   if (ctx_.exact) {
-    std::vector<std::uint32_t> planes;
-    planes.reserve(candidates.size());
+    std::vector<std::uint32_t>& planes = scratch_.pooled;
+    planes.clear();
     for (auto id : candidates) planes.push_back(ctx_.exact->plane(id));
-    std::vector<SideCounts> counts(candidates.size());
     ctx_.exact->count_sides(counted, planes, counts);
     return counts;
   }
-  std::vector<Plane> planes;
-  planes.reserve(candidates.size());
+  std::vector<Plane>& planes = scratch_.planes;
+  planes.clear();
   for (auto id : candidates) planes.push_back(ctx_.planes[ctx_.frags.plane(id)]);
-  std::vector<SideCounts> counts(candidates.size());
   ctx_.frags.count_sides(counted, planes, ctx_.tol.plane_eps, counts);
   return counts;
 }

@@ -33,14 +33,10 @@ inline constexpr std::uint64_t kSampledCandidates = 32;
 // Note for presets whose source scores every candidate.
 inline constexpr const char* kSourceScoresAll = "; its source scores all (candidates = 0 reproduces it)";
 
-// Scratch for candidate_fragments: a stamp per pooled plane pair, so finding the node's distinct
-// planes takes one pass over its fragments instead of a sort. Each splitter owns one; it is
-// scratch, not state, so a copy (a task's clone of the splitter) starts empty.
+// A stamp per pooled plane pair, so finding the node's distinct planes takes one pass over its
+// fragments instead of a sort.
 class PlaneMarks {
  public:
-  PlaneMarks() = default;
-  PlaneMarks(const PlaneMarks&) {}
-  PlaneMarks& operator=(const PlaneMarks&) { return *this; }
   // Starts a pass over a pool of `pairs` plane pairs: every pair is unseen again.
   void begin(std::size_t pairs);
   // True the first time the pair is seen in this pass.
@@ -55,12 +51,30 @@ class PlaneMarks {
   std::uint32_t pass_ = 0;
 };
 
+// The scratch of candidate_fragments and SideCounter. Each splitter owns one, so that choosing a
+// node's plane allocates nothing: the arrays keep their capacity from node to node (most nodes are
+// small, and allocating a few arrays for each cost more than counting its sides). Scratch, not
+// state: a copy (a task's clone of the splitter) starts empty.
+struct CandidateScratch {
+  CandidateScratch() = default;
+  CandidateScratch(const CandidateScratch&) {}
+  CandidateScratch& operator=(const CandidateScratch&) { return *this; }
+
+  PlaneMarks marks;
+  std::vector<std::uint32_t> positions, candidates;  // candidate_fragments'
+  std::vector<Plane> planes;                         // SideCounter's: the candidates' planes
+  std::vector<std::uint32_t> pooled;                 // the same as pool indices, in an exact build
+  std::vector<SideCounts> counts;
+};
+
 // One fragment per distinct pooled plane among ctx.ids (a plane and its flip count as one, since
 // they make the same partition), the first in ids order. When 0 < k < that number, k of them drawn
 // uniformly without replacement from `rng`; the result is in ids order either way, so ties between
 // equal scores go to the fragment that comes first in the node's set. Sampling over distinct planes
 // rather than fragments keeps a plane shared by many coplanar fragments from being scored twice.
-std::vector<std::uint32_t> candidate_fragments(const SplitContext& ctx, std::size_t k, Rng& rng, PlaneMarks& marks);
+// The result lives in scratch.candidates until the next call.
+std::span<const std::uint32_t> candidate_fragments(const SplitContext& ctx, std::size_t k, Rng& rng,
+                                                   CandidateScratch& scratch);
 
 // The `sample` parameter: s = 0 counts every fragment of the node.
 ParamSpec sample_param(double default_s);
@@ -71,15 +85,17 @@ ParamSpec sample_param(double default_s);
 // is not blurred by different draws. A node then costs O(k·s + m log m) instead of O(k·m).
 class SideCounter {
  public:
-  SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng);
+  SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng, CandidateScratch& scratch);
   // Each candidate fragment's plane against the counted fragments (a candidate counts as coplanar
-  // with itself when counted), all in one pass over them (FragmentStore::count_sides).
-  std::vector<SideCounts> operator()(std::span<const std::uint32_t> candidates) const;
+  // with itself when counted), all in one pass over them (FragmentStore::count_sides). The counts
+  // live in the scratch until the next call.
+  std::span<const SideCounts> operator()(std::span<const std::uint32_t> candidates) const;
   // m / (fragments counted): multiplies a count into an estimate for the whole node.
   double scale() const { return scale_; }
 
  private:
   const SplitContext& ctx_;
+  CandidateScratch& scratch_;
   std::vector<std::uint32_t> sampled_;  // empty when every fragment is counted
   double scale_ = 1.0;
 };
@@ -88,7 +104,7 @@ class SideCounter {
 // type ordered by `<` (a number, or a pair for lexicographic tie-breaking).
 template <class Cost>
 std::uint32_t argmin_candidate(const SideCounter& count, std::span<const std::uint32_t> candidates, Cost cost) {
-  const std::vector<SideCounts> counts = count(candidates);
+  const std::span<const SideCounts> counts = count(candidates);
   std::uint32_t best = candidates.front();
   auto best_cost = cost(best, counts.front());
   for (std::size_t i = 1; i < candidates.size(); ++i) {

@@ -75,6 +75,8 @@ class FragmentStore {
   FragmentView view(std::uint32_t id) const;
   std::span<const Vec3> points(std::uint32_t id) const { return {pos_.data() + span_[id].first, span_[id].count}; }
   std::uint32_t plane(std::uint32_t id) const { return plane_[id]; }
+  // Starts loading plane(id) into the cache, for a reader that knows which ids come next.
+  void prefetch_plane(std::uint32_t id) const { __builtin_prefetch(plane_.data() + id); }
   std::uint32_t source(std::uint32_t id) const { return source_[id]; }
   const BoundingSphere& sphere(std::uint32_t id) const { return sphere_[id]; }
   std::size_t vertices_live() const { return live_vertices_; }

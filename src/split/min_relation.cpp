@@ -10,7 +10,7 @@
 // loop would not end: then every candidate qualifies and the fewest splits decide.
 //
 // Counting once and lowering the threshold over the stored counts picks what the seed's recount per
-// round picks. Cost per node: O(m log m) + O(k·s) classifications (s = sample, or m).
+// round picks. Cost per node: O(m) + O(k·s) classifications (s = sample, or m).
 #include <algorithm>
 #include <vector>
 
@@ -58,9 +58,9 @@ class MinRelationSplitter final : public Splitter {
   SplitChoice choose(const SplitContext& ctx) override {
     std::vector<Scored> scored;
     Rng rng(stream_seed(seed_, ctx.node_key));
-    const auto candidates = candidate_fragments(ctx, s_.candidates, rng, marks_);
-    const SideCounter count(ctx, s_.sample, rng);
-    const std::vector<SideCounts> counts = count(candidates);
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng, scratch_);
+    const SideCounter count(ctx, s_.sample, rng, scratch_);
+    const std::span<const SideCounts> counts = count(candidates);
     for (std::size_t i = 0; i < candidates.size(); ++i)
       scored.push_back({candidates[i], counts[i].spanning, relation(counts[i])});
     return SplitChoice::of_fragment(best_qualifying(scored, threshold(scored)));
@@ -92,7 +92,7 @@ class MinRelationSplitter final : public Splitter {
 
   MinRelationSettings s_;
   std::uint64_t seed_;
-  PlaneMarks marks_;  // candidate_fragments' scratch
+  CandidateScratch scratch_;
 };
 
 }  // namespace

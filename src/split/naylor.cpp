@@ -15,7 +15,7 @@
 // metric measures), cut by the planes on the path from the root (ctx.cell_planes), each
 // candidate's children measured in one pass over the cell's faces (ConvexPolytope::measure_split).
 // The cells along the previous node's path are kept, and the build is depth-first, so a node's
-// cell costs one clip of its parent's. Cost per node: O(m log m) + O(k·s) (s = sample, or m)
+// cell costs one clip of its parent's. Cost per node: O(m) + O(k·s) (s = sample, or m)
 // classifications + k measures and one clip of a cell with O(depth) faces.
 //
 // 2D scenes (segments, geometry/segment2.h; the scene box has no height) are measured on prisms:
@@ -70,8 +70,8 @@ class NaylorSplitter final : public Splitter {
     update_cell(ctx);
     const double whole = measure(cells_.back().volume(), cells_.back().surface_area());
     Rng rng(stream_seed(seed_, ctx.node_key));
-    const auto candidates = candidate_fragments(ctx, s_.candidates, rng, marks_);
-    const SideCounter count(ctx, s_.sample, rng);
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng, scratch_);
+    const SideCounter count(ctx, s_.sample, rng, scratch_);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [&](std::uint32_t id, const SideCounts& c) {
       const auto [p_front, p_back] = probabilities(ctx, ctx.planes[ctx.frags.plane(id)], whole);
       return 1.0 + p_back * estimate(count.scale() * (c.back + c.spanning)) +
@@ -133,7 +133,7 @@ class NaylorSplitter final : public Splitter {
 
   NaylorSettings s_;
   std::uint64_t seed_;
-  PlaneMarks marks_;  // candidate_fragments' scratch
+  CandidateScratch scratch_;
   std::vector<std::uint32_t> path_;     // the planes the previous node's cell was cut by
   std::vector<ConvexPolytope> cells_;  // cells_[i]: the root cell cut by path_[0, i)
   double prism_height_ = 0;            // 2D scenes: the height of the prisms cells are measured on

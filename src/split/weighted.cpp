@@ -2,8 +2,9 @@
 // a few candidate polygons at each iteration and find the best of these ... the weighted sum of two
 // quantities, size (number of resulting splits) and distribution (difference in the number of
 // polygons in each of the resulting subsets)"), plus the coplanar and axial terms the Quake tools
-// add. Cost per node: O(m log m) to find the distinct planes, then O(k·s) classifications for m
-// fragments, k candidates and s counted fragments (s = m unless `sample` is set; O(m²) with k = 0).
+// add. Cost per node: O(m) to find the distinct planes (a stamp per pooled plane), then O(k·s)
+// classifications for m fragments, k candidates and s counted fragments (s = m unless `sample` is
+// set; O(m²) with k = 0).
 #include "split/weighted.h"
 
 #include <cstdlib>
@@ -25,8 +26,8 @@ class WeightedSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     Rng rng(stream_seed(seed_, ctx.node_key));
-    const auto candidates = candidate_fragments(ctx, s_.candidates, rng, marks_);
-    const SideCounter count(ctx, s_.sample, rng);
+    const auto candidates = candidate_fragments(ctx, s_.candidates, rng, scratch_);
+    const SideCounter count(ctx, s_.sample, rng, scratch_);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [&](std::uint32_t id, const SideCounts& c) {
       return cost(ctx.planes[ctx.frags.plane(id)], c, count.scale());
     }));
@@ -42,7 +43,7 @@ class WeightedSplitter final : public Splitter {
 
   WeightedSettings s_;
   std::uint64_t seed_;
-  PlaneMarks marks_;  // candidate_fragments' scratch
+  CandidateScratch scratch_;
 };
 
 ParamSpec weight_param(const char* name, const std::string& doc, double default_value) {
