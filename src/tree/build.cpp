@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/rng.h"
+#include "common/tick_clock.h"
 #include "tree/build_incremental.h"
 #include "tree/build_input.h"
 #include "tree/leaf_cell.h"
@@ -60,7 +61,7 @@ class RecursiveBuilder {
 
   void run(WorkItem first) {
     if (first.ids.empty()) return;
-    const auto start = Clock::now();
+    TickBill bill;
     const std::uint64_t store_tests = store_.side_tests();
     std::vector<WorkItem> stack;
     stack.push_back(std::move(first));
@@ -76,8 +77,10 @@ class RecursiveBuilder {
       }
     }
     // What the builder spent outside choose and outside the tasks it ran in place (each bills its own).
-    tree_.stats.machinery_seconds += seconds_since(start) - choose_seconds_ - inline_task_seconds_;
-    tree_.stats.choose_seconds += choose_seconds_;
+    const double seconds = bill.close();
+    const double choose_seconds = bill.seconds_of(choose_ticks_);
+    tree_.stats.machinery_seconds += seconds - choose_seconds - bill.seconds_of(inline_task_ticks_);
+    tree_.stats.choose_seconds += choose_seconds;
     tree_.stats.side_tests += store_.side_tests() - store_tests + partition_side_tests_;
     tree_.stats.choose_side_tests += choose_side_tests_;
   }
@@ -187,10 +190,10 @@ class RecursiveBuilder {
     Task* t = &task;
     const BuildOptions* options = &options_;
     // The runtime may run the task here, at once (always on one thread): that is the task's time.
-    const auto start = Clock::now();
+    const std::uint64_t start = read_ticks();
 #pragma omp task default(none) firstprivate(t, options)
     RecursiveBuilder(t->tree, *t->splitter, *options, std::move(t->prefix), nullptr).run(std::move(t->root));
-    inline_task_seconds_ += seconds_since(start);
+    inline_task_ticks_ += read_ticks() - start;
   }
 
   // Handed-off fragments leave space the main builder, which makes only the top of the tree, would
@@ -207,10 +210,10 @@ class RecursiveBuilder {
   std::pair<std::uint32_t, bool> choose_plane(const WorkItem& item) {
     if (splitter_.needs_cell()) collect_cell_planes(item);
     const SplitContext ctx{item.ids, store_, tree_.planes, tree_.tol, tree_.bounds, cell_planes_, item.depth, item.key};
-    const auto start = Clock::now();
+    const std::uint64_t start = read_ticks();
     const std::uint64_t tests = store_.side_tests();
     const SplitChoice choice = splitter_.choose(ctx);
-    choose_seconds_ += seconds_since(start);
+    choose_ticks_ += read_ticks() - start;
     choose_side_tests_ += store_.side_tests() - tests;
     switch (choice.kind) {
       case SplitChoice::Kind::Fragment: return {store_.plane(choice.fragment), true};
@@ -329,8 +332,9 @@ class RecursiveBuilder {
   std::vector<std::uint32_t> cell_planes_;
   std::vector<std::uint32_t> parent_;  // build-time side data, parallel to tree_.nodes
   std::vector<bool> parent_front_;
-  double choose_seconds_ = 0.0;       // this builder's time inside Splitter::choose
-  double inline_task_seconds_ = 0.0;  // its time in task statements, which may run the task in place
+  // This builder's time inside Splitter::choose, and in task statements (which may run the task in
+  // place), in ticks of its TickBill.
+  std::uint64_t choose_ticks_ = 0, inline_task_ticks_ = 0;
   std::uint64_t choose_side_tests_ = 0;     // the store's side tests made inside choose
   std::uint64_t partition_side_tests_ = 0;  // partition's own, which bypasses the store's classify
 };

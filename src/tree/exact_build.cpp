@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/tick_clock.h"
+
 namespace bsp {
 
 namespace {
@@ -47,6 +49,7 @@ class ExactBuilder {
       : frags_(frags), splitter_(splitter), shape_(shape), tol_(tol), bounds_(bounds), stats_(stats), exact_(exact) {}
 
   Built run(std::vector<std::uint32_t> ids) {
+    TickBill bill;
     std::vector<WorkItem> stack;
     if (!ids.empty()) stack.push_back({std::move(ids)});
     while (!stack.empty()) {
@@ -54,7 +57,8 @@ class ExactBuilder {
       stack.pop_back();
       process(std::move(item), stack);
     }
-    stats_.choose_seconds += choose_seconds_;
+    bill.close();
+    stats_.choose_seconds += bill.seconds_of(choose_ticks_);
     return std::move(built_);
   }
 
@@ -91,9 +95,9 @@ class ExactBuilder {
     SplitContext ctx{item.ids, frags_.rounded(), frags_.planes().scene_planes(), tol_, bounds_, cell_planes_,
                      item.depth, item.key};
     ctx.exact = &frags_;
-    const auto start = Clock::now();
+    const std::uint64_t start = read_ticks();
     const SplitChoice choice = splitter_.choose(ctx);
-    choose_seconds_ += seconds_since(start);
+    choose_ticks_ += read_ticks() - start;
     switch (choice.kind) {
       case SplitChoice::Kind::Fragment: return {frags_.plane(choice.fragment), true};
       case SplitChoice::Kind::Free:
@@ -170,7 +174,7 @@ class ExactBuilder {
   std::vector<std::uint32_t> parent_;
   std::vector<bool> parent_front_;
   std::vector<std::uint32_t> cell_planes_;
-  double choose_seconds_ = 0.0;
+  std::uint64_t choose_ticks_ = 0;  // time inside Splitter::choose, in ticks of run's TickBill
 };
 
 // The frozen tree: planes renumbered in first-use order (nodes, then fragments), as freeze() does
