@@ -18,6 +18,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// How many fragments ahead partition asks for a fragment's bounding sphere.
+constexpr std::size_t kSpherePrefetch = 8;
+
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // One pending subtree: its fragments and where to hang the node made from them.
@@ -255,6 +258,9 @@ class RecursiveBuilder {
     const std::size_t size = ids.size();
     std::size_t w = 0;
     for (std::size_t r = 0; r < size; ++r) {
+      // The spheres are scattered through the store; the ids ahead are known (and not yet
+      // overwritten: writes stay at or before r).
+      if (r + kSpherePrefetch < size) __builtin_prefetch(&store_.sphere(data[r + kSpherePrefetch]));
       const std::uint32_t id = data[r];
       const BoundingSphere& s = store_.sphere(id);
       const double d = plane.distance(s.center);
