@@ -153,10 +153,45 @@ TEST(ConvexPolytope, MeasuringASplitEqualsMeasuringBothClippedParts) {
       EXPECT_NEAR(m.back_volume, back.volume(), 1e-9) << trial;
       EXPECT_NEAR(m.front_area, front.surface_area(), 1e-9 * scale) << trial;
       EXPECT_NEAR(m.back_area, back.surface_area(), 1e-9 * scale) << trial;
+      // Volumes alone are the same bits, without the areas.
+      const auto v = cell.measure_split(p, eps, ConvexPolytope::Measures::Volumes);
+      EXPECT_EQ(v.front_volume, m.front_volume) << trial;
+      EXPECT_EQ(v.back_volume, m.back_volume) << trial;
+      EXPECT_EQ(v.front_area + v.back_area, 0.0) << trial;
       ++checked;
     }
   }
   EXPECT_EQ(checked, 1200);
+}
+
+// clip_into a polytope that already holds another (larger, smaller, the same) gives clipped()'s
+// faces exactly: its memory is reused, never its contents.
+TEST(ConvexPolytope, ClippingIntoAUsedPolytopeEqualsClippingIntoAFreshOne) {
+  Rng rng(23);
+  const auto random_plane = [&] {
+    return Plane::through(normalize(Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)}),
+                          Vec3{rng.uniform(), rng.uniform(), rng.uniform()});
+  };
+  const auto same = [](const ConvexPolytope& a, const ConvexPolytope& b) {
+    if (a.face_count() != b.face_count()) return false;
+    for (std::size_t i = 0; i < a.face_count(); ++i)
+      if (!std::equal(a.face(i).begin(), a.face(i).end(), b.face(i).begin(), b.face(i).end(),
+                      [](const Vec3& p, const Vec3& q) { return p.x == q.x && p.y == q.y && p.z == q.z; }))
+        return false;
+    return true;
+  };
+  ConvexPolytope used = ConvexPolytope::box({{-5, -5, -5}, {5, 5, 5}});
+  int cut = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    ConvexPolytope cell = ConvexPolytope::box({{0, 0, 0}, {1, 1, 1}});
+    for (int c = 0; c < trial % 6; ++c) cell = cell.clipped(random_plane(), 1e-12);
+    const Plane p = trial % 7 == 0 ? Plane::through({0, 0, 1}, {0, 0, 2}) : random_plane();  // some miss the cell
+    const ConvexPolytope fresh = cell.clipped(p, 1e-12);
+    cell.clip_into(p, 1e-12, used);
+    EXPECT_TRUE(same(used, fresh)) << trial;
+    cut += !fresh.empty() && fresh.face_count() != cell.face_count();
+  }
+  EXPECT_GT(cut, 50);
 }
 
 TEST(Split, AdjacentVerticesWithinToleranceDoNotMakeThePartsOverlap) {

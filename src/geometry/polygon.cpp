@@ -134,32 +134,50 @@ bool keep_or_drop(Polygon& part, double eps, SplitKept& out) {
 
 }  // namespace
 
-SplitKept split_into(const Polygon& poly, const Plane& plane, double eps, Polygon& front, Polygon& back) {
-  // eps decided that the polygon spans the plane; the cut itself goes by the true sign of each
-  // distance, so the two parts partition the polygon exactly. (Sending every vertex within eps to
-  // both parts would make them overlap wherever two such vertices are adjacent.)
+namespace {
+
+// The parts of a polygon on either side of the plane, into `front` and, unless null, `back`.
+// eps decided that the polygon spans the plane; the cut itself goes by the true sign of each
+// distance, so the two parts partition the polygon exactly. (Sending every vertex within eps to
+// both parts would make them overlap wherever two such vertices are adjacent.)
+void cut(const Polygon& poly, const Plane& plane, Polygon& front, Polygon* back) {
   const std::size_t k = poly.verts.size();
   front.verts.clear();
-  back.verts.clear();
-  front.source = back.source = poly.source;
+  front.source = poly.source;
+  if (back) {
+    back->verts.clear();
+    back->source = poly.source;
+  }
   double di = k > 0 ? plane.distance(poly.verts[0].p) : 0.0;
   for (std::size_t i = 0; i < k; ++i) {
     const std::size_t j = (i + 1) % k;
     const double dj = plane.distance(poly.verts[j].p);
     const Vertex& a = poly.verts[i];
     if (di >= 0) front.verts.push_back(a);
-    if (di <= 0) back.verts.push_back(a);
+    if (di <= 0 && back) back->verts.push_back(a);
     if ((di > 0 && dj < 0) || (di < 0 && dj > 0)) {
       const Vertex x = interpolate(a, poly.verts[j], di / (di - dj));
       front.verts.push_back(x);
-      back.verts.push_back(x);
+      if (back) back->verts.push_back(x);
     }
     di = dj;
   }
+}
+
+}  // namespace
+
+SplitKept split_into(const Polygon& poly, const Plane& plane, double eps, Polygon& front, Polygon& back) {
+  cut(poly, plane, front, &back);
   SplitKept kept;
   kept.front = keep_or_drop(front, eps, kept);
   kept.back = keep_or_drop(back, eps, kept);
   return kept;
+}
+
+bool front_part_into(const Polygon& poly, const Plane& plane, double eps, Polygon& front) {
+  cut(poly, plane, front, nullptr);
+  SplitKept unused;
+  return keep_or_drop(front, eps, unused);
 }
 
 SplitResult split(const Polygon& poly, const Plane& plane, double eps) {

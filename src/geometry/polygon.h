@@ -67,6 +67,9 @@ struct SplitKept {
   double dropped_area = 0.0;  // as SplitResult
 };
 SplitKept split_into(const Polygon& poly, const Plane& plane, double eps, Polygon& front, Polygon& back);
+// split_into's front part alone (the back part is never computed): true when it is kept; `front`
+// is overwritten either way.
+bool front_part_into(const Polygon& poly, const Plane& plane, double eps, Polygon& front);
 bool is_sliver(const Polygon& poly, double eps);
 
 }  // namespace bsp

@@ -8,27 +8,37 @@ namespace bsp {
 
 namespace {
 
-// Orders points lying on `plane` into a convex polygon whose Newell normal points along `outward`.
-// Points closer than eps to an earlier one are merged. Empty when fewer than 3 remain.
-std::vector<Vec3> cap_polygon(const std::vector<Vec3>& pts, const Vec3& outward, double eps) {
-  std::vector<Vec3> unique;
+// clip_into's scratch, reused across calls on a thread: the face being cut and its front part, the
+// cut face's points, and cap_polygon's arrays.
+struct ClipScratch {
+  Polygon whole, front;
+  std::vector<Vec3> on_plane, unique;
+  std::vector<std::pair<double, std::uint32_t>> angle;
+};
+
+// Orders points lying on `plane` into a convex polygon whose Newell normal points along `outward`,
+// appended to `out`. Points closer than eps to an earlier one are merged. Appends nothing and
+// returns false when fewer than 3 remain.
+bool cap_polygon(const std::vector<Vec3>& pts, const Vec3& outward, double eps, ClipScratch& scratch,
+                 std::vector<Vec3>& out) {
+  std::vector<Vec3>& unique = scratch.unique;
+  unique.clear();
   for (const auto& p : pts)
     if (std::none_of(unique.begin(), unique.end(), [&](const Vec3& q) { return length(p - q) <= eps; }))
       unique.push_back(p);
-  if (unique.size() < 3) return {};
+  if (unique.size() < 3) return false;
   Vec3 c;
   for (const auto& p : unique) c += p;
   c = c / static_cast<double>(unique.size());
   const Vec3 u = normalize(std::abs(outward.x) < 0.9 ? cross(outward, Vec3{1, 0, 0}) : cross(outward, Vec3{0, 1, 0}));
   const Vec3 v = cross(outward, u);
   // Counter-clockwise about `outward` in the (u, v) basis; each angle computed once.
-  std::vector<std::pair<double, std::uint32_t>> angle(unique.size());
+  auto& angle = scratch.angle;
+  angle.resize(unique.size());
   for (std::uint32_t i = 0; i < unique.size(); ++i) angle[i] = {std::atan2(dot(unique[i] - c, v), dot(unique[i] - c, u)), i};
   std::sort(angle.begin(), angle.end());
-  std::vector<Vec3> out;
-  out.reserve(unique.size());
   for (const auto& a : angle) out.push_back(unique[a.second]);
-  return out;
+  return true;
 }
 
 }  // namespace
@@ -54,39 +64,46 @@ ConvexPolytope ConvexPolytope::box(const Box& b) {
 }
 
 ConvexPolytope ConvexPolytope::clipped(const Plane& keep, double eps) const {
+  ConvexPolytope out;
+  clip_into(keep, eps, out);
+  return out;
+}
+
+void ConvexPolytope::clip_into(const Plane& keep, double eps, ConvexPolytope& out) const {
   bool any_front = false, any_back = false;
   for (const Vec3& v : points_) {
     const double d = keep.distance(v);
     any_front |= d > eps;
     any_back |= d < -eps;
   }
-  if (!any_back) return *this;
-  if (!any_front) return {};
-  ConvexPolytope out;
-  out.points_.reserve(points_.size() + points_.size() / 2);
-  std::vector<Vec3> on_plane;
-  // Split scratch, reused across faces and calls on this thread.
-  thread_local Polygon whole, front, back;
+  if (!any_back) {
+    out = *this;
+    return;
+  }
+  out.points_.clear();
+  out.start_.assign(1, 0);
+  if (!any_front) return;
+  thread_local ClipScratch scratch;
+  scratch.on_plane.clear();
   for (std::size_t i = 0; i < face_count(); ++i) {
     const std::span<const Vec3> f = face(i);
     const Side side = classify(f, keep, eps);
     if (side == Side::Back) continue;
     if (side == Side::Spanning) {
-      whole.verts.resize(f.size());
-      for (std::size_t k = 0; k < f.size(); ++k) whole.verts[k] = Vertex{f[k]};
+      scratch.whole.verts.resize(f.size());
+      for (std::size_t k = 0; k < f.size(); ++k) scratch.whole.verts[k] = Vertex{f[k]};
       // Polytope faces are never dropped as slivers: a thin face still bounds the volume.
-      if (!split_into(whole, keep, 0.0, front, back).front) continue;
-      for (const Vertex& v : front.verts) out.points_.push_back(v.p);
+      if (!front_part_into(scratch.whole, keep, 0.0, scratch.front)) continue;
+      for (const Vertex& v : scratch.front.verts) out.points_.push_back(v.p);
     } else {
       out.points_.insert(out.points_.end(), f.begin(), f.end());
     }
     for (std::size_t k = out.start_.back(); k < out.points_.size(); ++k)
-      if (std::abs(keep.distance(out.points_[k])) <= eps) on_plane.push_back(out.points_[k]);
+      if (std::abs(keep.distance(out.points_[k])) <= eps) scratch.on_plane.push_back(out.points_[k]);
     out.start_.push_back(static_cast<std::uint32_t>(out.points_.size()));
   }
-  const std::vector<Vec3> cap = cap_polygon(on_plane, -keep.n, eps);
-  if (!cap.empty()) out.add_face(cap);
-  return out;
+  if (cap_polygon(scratch.on_plane, -keep.n, eps, scratch, out.points_))
+    out.start_.push_back(static_cast<std::uint32_t>(out.points_.size()));
 }
 
 namespace {
@@ -118,7 +135,8 @@ struct NewellSum {
 // A face lying on the plane (every vertex within eps) is left to the cut face: it bounds the side its
 // outward normal points away from, where the closure counts it, and touches the other only along
 // its edges. When no vertex lies beyond eps on one side, that side is empty, as in clipped().
-ConvexPolytope::SplitMeasure ConvexPolytope::measure_split(const Plane& plane, double eps) const {
+ConvexPolytope::SplitMeasure ConvexPolytope::measure_split(const Plane& plane, double eps, Measures what) const {
+  const bool areas = what == Measures::VolumesAndAreas;
   // Each vertex's distance, snapped to 0 within eps, computed once, parallel to points_.
   thread_local std::vector<double> dist;
   dist.resize(points_.size());
@@ -130,8 +148,8 @@ ConvexPolytope::SplitMeasure ConvexPolytope::measure_split(const Plane& plane, d
     any_back |= d < 0;
     dist[i] = d;
   }
-  if (!any_back) return {volume(), 0.0, surface_area(), 0.0};
-  if (!any_front) return {0.0, volume(), 0.0, surface_area()};
+  if (!any_back) return {volume(), 0.0, areas ? surface_area() : 0.0, 0.0};
+  if (!any_front) return {0.0, volume(), 0.0, areas ? surface_area() : 0.0};
   const Vec3 o = plane.n * -plane.d;
   Vec3 front_total, back_total;
   SplitMeasure m;
@@ -158,9 +176,11 @@ ConvexPolytope::SplitMeasure ConvexPolytope::measure_split(const Plane& plane, d
     back_total += nb;
     m.front_volume += dot(nf, front.point) / 6.0;
     m.back_volume += dot(nb, back.point) / 6.0;
+    if (!areas) continue;
     m.front_area += 0.5 * length(nf);
     m.back_area += 0.5 * length(nb);
   }
+  if (!areas) return m;
   m.front_area += 0.5 * length(front_total);
   m.back_area += 0.5 * length(back_total);
   return m;

@@ -24,6 +24,9 @@ class ConvexPolytope {
 
   // The part in front of or on the plane (distance >= 0); eps is the on-plane tolerance.
   ConvexPolytope clipped(const Plane& keep_front, double eps) const;
+  // clipped() into `out` (not this one), reusing its memory: a caller clipping cell after cell
+  // allocates nothing once its polytopes have grown.
+  void clip_into(const Plane& keep_front, double eps, ConvexPolytope& out) const;
 
   // The two parts on either side of a plane, measured without building them (one pass over the
   // faces, no allocation): what Naylor's cost model needs of every candidate. Vertices within eps
@@ -32,7 +35,9 @@ class ConvexPolytope {
     double front_volume = 0, back_volume = 0;
     double front_area = 0, back_area = 0;
   };
-  SplitMeasure measure_split(const Plane& plane, double eps) const;
+  // What measure_split computes: volumes alone spare two square roots a face (the areas are 0).
+  enum class Measures : std::uint8_t { Volumes, VolumesAndAreas };
+  SplitMeasure measure_split(const Plane& plane, double eps, Measures what = Measures::VolumesAndAreas) const;
 
   bool empty() const { return face_count() == 0; }
   double volume() const;        // divergence theorem: (1/3) sum of area * (n . p)

@@ -68,7 +68,7 @@ class NaylorSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     update_cell(ctx);
-    const double whole = measure(cells_.back().volume(), cells_.back().surface_area());
+    const double whole = measure(cell().volume(), s_.model == Model::Area ? cell().surface_area() : 0.0);
     Rng rng(stream_seed(seed_, ctx.node_key));
     const auto candidates = candidate_fragments(ctx, s_.candidates, rng, scratch_);
     const SideCounter count(ctx, s_.sample, rng, scratch_);
@@ -91,7 +91,9 @@ class NaylorSplitter final : public Splitter {
   // P⁺ and P⁻ of a candidate plane, from one pass over the cell's faces (no child polytope is built).
   std::pair<double, double> probabilities(const SplitContext& ctx, const Plane& p, double whole) const {
     if (!(whole > 0)) return {kEvenProbability, kEvenProbability};
-    const ConvexPolytope::SplitMeasure m = cells_.back().measure_split(p, ctx.tol.plane_eps);
+    const ConvexPolytope::SplitMeasure m = cell().measure_split(
+        p, ctx.tol.plane_eps,
+        s_.model == Model::Volume ? ConvexPolytope::Measures::Volumes : ConvexPolytope::Measures::VolumesAndAreas);
     return {measure(m.front_volume, m.front_area) / whole, measure(m.back_volume, m.back_area) / whole};
   }
 
@@ -112,10 +114,11 @@ class NaylorSplitter final : public Splitter {
     return x;
   }
 
-  // Brings cells_.back() to the node's cell. cells_ holds the cells along the previous node's path
+  // Brings cell() to the node's cell. cells_ holds the cells along the previous node's path
   // (cells_[i] cut by its first i planes), so a node clips only the planes past the path it shares
   // with the previous one: one clip for a child of the previous node, and one for the back child of an
-  // ancestor that the depth-first build comes back to, instead of O(depth) from the box.
+  // ancestor that the depth-first build comes back to, instead of O(depth) from the box. Cells past
+  // the path keep their memory for the next node that goes as deep.
   void update_cell(const SplitContext& ctx) {
     const auto& want = ctx.cell_planes;
     std::size_t shared = 0;
@@ -125,17 +128,20 @@ class NaylorSplitter final : public Splitter {
       if (ctx.scene_box.hi.z == ctx.scene_box.lo.z) prism_height_ = root.hi.z - root.lo.z;
       cells_.push_back(ConvexPolytope::box(root));
     }
-    cells_.resize(shared + 1);
+    if (cells_.size() < want.size() + 1) cells_.resize(want.size() + 1);
     for (std::size_t i = shared; i < want.size(); ++i)
-      cells_.push_back(cells_.back().clipped(ctx.planes[want[i]], ctx.tol.plane_eps));
+      cells_[i].clip_into(ctx.planes[want[i]], ctx.tol.plane_eps, cells_[i + 1]);
     path_.assign(want.begin(), want.end());
   }
+
+  // The node's cell, once update_cell has run.
+  const ConvexPolytope& cell() const { return cells_[path_.size()]; }
 
   NaylorSettings s_;
   std::uint64_t seed_;
   CandidateScratch scratch_;
   std::vector<std::uint32_t> path_;     // the planes the previous node's cell was cut by
-  std::vector<ConvexPolytope> cells_;  // cells_[i]: the root cell cut by path_[0, i)
+  std::vector<ConvexPolytope> cells_;  // cells_[i]: the root cell cut by path_[0, i), i <= path_.size()
   double prism_height_ = 0;            // 2D scenes: the height of the prisms cells are measured on
 };
 
