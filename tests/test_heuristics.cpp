@@ -434,3 +434,47 @@ TEST(SampledHeuristics, TheSeedChoosesTheSampleAndOnlyThen) {
   EXPECT_TRUE(identical(build(scene.polygons, "weighted", whole_sample, Shape::Strict, 2),
                         build(scene.polygons, "weighted", exhaustive, Shape::Strict, 1)));
 }
+
+// A splitter's clone (what a task builds with) chooses as a fresh splitter does, whatever the
+// original chose before: naylor keeps the cells of its previous node's path by pooled plane index,
+// and a task numbers its planes in a pool of its own, where the original's indices name other
+// planes. Here the same fragments are pooled in opposite orders, so cell plane indices {0, 2, ...}
+// name different planes in the two pools.
+TEST(NaylorSplitter, ACloneChoosesAsAFreshSplitterDoesWhateverTheOriginalChoseBefore) {
+  const Scene scene = make_scene("random-triangles", {{"n", "200"}, {"seed", "5"}});
+  Box box;
+  for (const Polygon& p : scene.polygons)
+    for (const Vertex& v : p.verts) box.add(v.p);
+  const Tolerance tol = Tolerance::for_extent(box.diagonal());
+  struct Pooled {
+    FragmentStore frags;
+    PlanePool planes;
+    std::vector<std::uint32_t> ids;
+  };
+  const auto pool = [&](bool reversed) {
+    Pooled out;
+    std::vector<std::size_t> order(scene.polygons.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = reversed ? order.size() - 1 - i : i;
+    for (std::size_t i : order)
+      if (const auto plane = supporting_plane(scene.polygons[i]))
+        out.ids.push_back(out.frags.add(scene.polygons[i], out.planes.add(*plane)));
+    return out;
+  };
+  const Pooled forward = pool(false), backward = pool(true);
+  const auto context = [&](const Pooled& p, std::span<const std::uint32_t> cell) {
+    return SplitContext{p.ids, p.frags, p.planes, tol, box, cell, static_cast<std::uint32_t>(cell.size() + 1)};
+  };
+  int differing_cells = 0;
+  for (std::uint32_t depth = 1; depth <= 4; ++depth) {
+    std::vector<std::uint32_t> cell;
+    for (std::uint32_t k = 0; k < depth; ++k) cell.push_back(2 * k);
+    const auto original = make_splitter("naylor", {}, 3);
+    original->choose(context(forward, cell));
+    const auto clone = original->clone();
+    const auto fresh = make_splitter("naylor", {}, 3);
+    const SplitChoice a = clone->choose(context(backward, cell)), b = fresh->choose(context(backward, cell));
+    EXPECT_EQ(a.fragment, b.fragment) << "cell of " << depth << " planes";
+    differing_cells += !(forward.planes[cell.back()] == backward.planes[cell.back()]);
+  }
+  EXPECT_EQ(differing_cells, 4);  // the indices named other planes in the other pool
+}

@@ -81,11 +81,11 @@ class NaylorSplitter final : public Splitter {
 
  private:
   // The cell's measure from its volume and surface: those in 3D, its 2D area or perimeter in 2D
-  // (prism_height_ > 0).
+  // (path_.prism_height > 0).
   double measure(double volume, double surface) const {
     if (s_.model == Model::Volume) return volume;
-    if (prism_height_ == 0) return surface;
-    return (surface - 2 * volume / prism_height_) / prism_height_;
+    if (path_.prism_height == 0) return surface;
+    return (surface - 2 * volume / path_.prism_height) / path_.prism_height;
   }
 
   // P⁺ and P⁻ of a candidate plane, from one pass over the cell's faces (no child polytope is built).
@@ -114,35 +114,47 @@ class NaylorSplitter final : public Splitter {
     return x;
   }
 
-  // Brings cell() to the node's cell. cells_ holds the cells along the previous node's path
-  // (cells_[i] cut by its first i planes), so a node clips only the planes past the path it shares
-  // with the previous one: one clip for a child of the previous node, and one for the back child of an
-  // ancestor that the depth-first build comes back to, instead of O(depth) from the box. Cells past
-  // the path keep their memory for the next node that goes as deep.
+  // Brings cell() to the node's cell. path_ holds the cells along the previous node's path, so a
+  // node clips only the planes past the path it shares with the previous one: one clip for a child
+  // of the previous node, and one for the back child of an ancestor that the depth-first build
+  // comes back to, instead of O(depth) from the box. Cells past the path keep their memory for the
+  // next node that goes as deep.
   void update_cell(const SplitContext& ctx) {
     const auto& want = ctx.cell_planes;
+    std::vector<ConvexPolytope>& cells = path_.cells;
     std::size_t shared = 0;
-    while (shared < want.size() && shared < path_.size() && want[shared] == path_[shared]) ++shared;
-    if (cells_.empty()) {
+    while (shared < want.size() && shared < path_.planes.size() && want[shared] == path_.planes[shared]) ++shared;
+    if (cells.empty()) {
       const Box root = ctx.scene_box.enlarged(s_.margin);
-      if (ctx.scene_box.hi.z == ctx.scene_box.lo.z) prism_height_ = root.hi.z - root.lo.z;
-      cells_.push_back(ConvexPolytope::box(root));
+      if (ctx.scene_box.hi.z == ctx.scene_box.lo.z) path_.prism_height = root.hi.z - root.lo.z;
+      cells.push_back(ConvexPolytope::box(root));
     }
-    if (cells_.size() < want.size() + 1) cells_.resize(want.size() + 1);
+    if (cells.size() < want.size() + 1) cells.resize(want.size() + 1);
     for (std::size_t i = shared; i < want.size(); ++i)
-      cells_[i].clip_into(ctx.planes[want[i]], ctx.tol.plane_eps, cells_[i + 1]);
-    path_.assign(want.begin(), want.end());
+      cells[i].clip_into(ctx.planes[want[i]], ctx.tol.plane_eps, cells[i + 1]);
+    path_.planes.assign(want.begin(), want.end());
   }
 
   // The node's cell, once update_cell has run.
-  const ConvexPolytope& cell() const { return cells_[path_.size()]; }
+  const ConvexPolytope& cell() const { return path_.cells[path_.planes.size()]; }
+
+  // The cells along the previous node's path: scratch, not state. A copy (a task's clone of the
+  // splitter) starts empty: its builder numbers planes in a pool of its own, where the indices in
+  // `planes` would name other planes and a shared prefix would be a coincidence of numbers.
+  struct CellPath {
+    CellPath() = default;
+    CellPath(const CellPath&) {}
+    CellPath& operator=(const CellPath&) { return *this; }
+
+    std::vector<std::uint32_t> planes;  // the pooled planes the previous node's cell was cut by
+    std::vector<ConvexPolytope> cells;  // cells[i]: the root cell cut by planes[0, i), i <= planes.size()
+    double prism_height = 0;            // 2D scenes: the height of the prisms cells are measured on
+  };
 
   NaylorSettings s_;
   std::uint64_t seed_;
   CandidateScratch scratch_;
-  std::vector<std::uint32_t> path_;     // the planes the previous node's cell was cut by
-  std::vector<ConvexPolytope> cells_;  // cells_[i]: the root cell cut by path_[0, i), i <= path_.size()
-  double prism_height_ = 0;            // 2D scenes: the height of the prisms cells are measured on
+  CellPath path_;
 };
 
 }  // namespace
