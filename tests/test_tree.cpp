@@ -1,6 +1,7 @@
 // The tree: invariants for the foundation heuristics on generated scenes, traversal emitting every
 // fragment exactly once, and the 10^5-deep degenerate chain that must not overflow the stack.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -370,7 +371,8 @@ TEST(FragmentStore, StoresNoTextureCoordinatesUnlessAsked) {
 }
 
 // The batched count (one pass over the fragments for a block of planes, on each vector path: four
-// planes per AVX instruction where the processor has AVX, two per SSE2 one) against one count_sides per plane: the same counts and the same number of side
+// planes per AVX instruction where the processor has AVX, two per SSE2 one) against one
+// count_sides per plane: the same counts and the same number of side
 // tests, for block sizes around the vector width and the block (odd, 32, 33, past two blocks), and
 // for the ties a sphere test cannot decide: planes through vertices, through a sphere's edge, and
 // the fragments' own planes.
@@ -499,4 +501,25 @@ TEST(BuildBill, TimeInsideChooseIsBilledToChoosingAndTheRestToTheMachinery) {
   EXPECT_LE(tree.stats.choose_seconds + tree.stats.machinery_seconds, tree.stats.build_seconds * (1 + 1e-9));
   const Tree inserted = build_incremental_tree(stacked_squares(20), {});
   EXPECT_EQ(inserted.stats.choose_seconds + inserted.stats.machinery_seconds, 0.0);
+}
+
+// The same bill when subtrees are handed to tasks, on one thread and on two: each task bills its
+// own choose, the main builder leaves out its time in task statements (where the task may run at
+// once), and no part is negative or exceeds the build. A chain of 200 squares hands its last 50 to
+// a task (task_share 4).
+TEST(BuildBill, TasksBillTheirOwnChoosing) {
+  const int threads = omp_get_max_threads();
+  for (int t : {1, 2}) {
+    omp_set_num_threads(t);
+    SlowChooser slow(make_splitter("first", {}, 1), std::chrono::microseconds(200));
+    const Tree tree = build_tree(stacked_squares(200), slow, {.task_share = 4, .min_task_fragments = 8});
+    EXPECT_GT(tree.stats.tasks, 0u) << t;
+    EXPECT_GE(tree.stats.choose_seconds, 200 * 200e-6) << t;  // the tasks' choices are billed too
+    EXPECT_GT(tree.stats.machinery_seconds, 0.0) << t;
+    EXPECT_LT(tree.stats.machinery_seconds, tree.stats.choose_seconds) << t;
+    if (t == 1) {
+      EXPECT_LE(tree.stats.choose_seconds + tree.stats.machinery_seconds, tree.stats.build_seconds * (1 + 1e-9));
+    }
+  }
+  omp_set_num_threads(threads);
 }

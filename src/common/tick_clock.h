@@ -6,6 +6,7 @@
 // and turns them into seconds once, at the end, as their share of the long span's steady_clock time,
 // so no tick rate is assumed, only that it is constant over the span (x86-64's invariant TSC;
 // elsewhere the ticks are steady_clock's own).
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 
@@ -23,19 +24,27 @@ inline std::uint64_t read_ticks() {
 #endif
 }
 
-// The long span, from construction to close(). Short spans inside it are read with read_ticks().
+// The ticks from `start` to now, 0 if the counter reads lower than at the start (a thread moved to a
+// core whose counter is behind, where counters are not synchronised): a span is never negative.
+inline std::uint64_t ticks_since(std::uint64_t start) {
+  const std::uint64_t now = read_ticks();
+  return now > start ? now - start : 0;
+}
+
+// The long span, from construction to close(). Short spans inside it are read with read_ticks() and
+// ticks_since().
 class TickBill {
  public:
   TickBill() : start_(std::chrono::steady_clock::now()), start_ticks_(read_ticks()) {}
   // Ends the span; returns its steady_clock seconds.
   double close() {
     seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    ticks_ = read_ticks() - start_ticks_;
+    ticks_ = ticks_since(start_ticks_);
     return seconds_;
   }
-  // After close(): the seconds of `ticks` counted inside the span, as their share of it.
+  // After close(): the seconds of `ticks` counted inside the span, as their share of it (at most all).
   double seconds_of(std::uint64_t ticks) const {
-    return ticks_ == 0 ? 0.0 : seconds_ * static_cast<double>(ticks) / static_cast<double>(ticks_);
+    return ticks_ == 0 ? 0.0 : seconds_ * static_cast<double>(std::min(ticks, ticks_)) / static_cast<double>(ticks_);
   }
 
  private:

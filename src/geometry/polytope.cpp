@@ -1,6 +1,7 @@
 #include "geometry/polytope.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <utility>
 
@@ -70,6 +71,7 @@ ConvexPolytope ConvexPolytope::clipped(const Plane& keep, double eps) const {
 }
 
 void ConvexPolytope::clip_into(const Plane& keep, double eps, ConvexPolytope& out) const {
+  assert(&out != this);  // out is cleared before this polytope's faces are read
   bool any_front = false, any_back = false;
   for (const Vec3& v : points_) {
     const double d = keep.distance(v);
@@ -83,6 +85,7 @@ void ConvexPolytope::clip_into(const Plane& keep, double eps, ConvexPolytope& ou
   out.points_.clear();
   out.start_.assign(1, 0);
   if (!any_front) return;
+  out.points_.reserve(points_.size() + points_.size() / 2);
   thread_local ClipScratch scratch;
   scratch.on_plane.clear();
   for (std::size_t i = 0; i < face_count(); ++i) {
@@ -172,11 +175,11 @@ ConvexPolytope::SplitMeasure ConvexPolytope::measure_split(const Plane& plane, d
       }
     }
     const Vec3 nf = front.closed(), nb = back.closed();
-    front_total += nf;
-    back_total += nb;
     m.front_volume += dot(nf, front.point) / 6.0;
     m.back_volume += dot(nb, back.point) / 6.0;
     if (!areas) continue;
+    front_total += nf;
+    back_total += nb;
     m.front_area += 0.5 * length(nf);
     m.back_area += 0.5 * length(nb);
   }

@@ -19,9 +19,6 @@ ParamSpec candidates_param(double default_k, const std::string& doc_suffix) {
 
 namespace {
 
-// How many fragments ahead distinct_plane_positions asks for a fragment's pooled plane index.
-constexpr std::size_t kPlanePrefetch = 8;
-
 // Positions in ctx.ids of the first fragment on each distinct plane pair, ascending.
 void distinct_plane_positions(const SplitContext& ctx, PlaneMarks& marks, std::vector<std::uint32_t>& positions) {
   marks.begin(ctx.planes.size() / 2);
@@ -29,7 +26,7 @@ void distinct_plane_positions(const SplitContext& ctx, PlaneMarks& marks, std::v
   const std::size_t m = ctx.ids.size();
   for (std::uint32_t i = 0; i < m; ++i) {
     // The fragments' planes are scattered through the store; the ids ahead are known.
-    if (i + kPlanePrefetch < m) ctx.frags.prefetch_plane(ctx.ids[i + kPlanePrefetch]);
+    if (i + kPrefetchAhead < m) ctx.frags.prefetch_plane(ctx.ids[i + kPrefetchAhead]);
     if (marks.first_sight(ctx.frags.plane(ctx.ids[i]) >> 1)) positions.push_back(i);
   }
 }

@@ -52,9 +52,9 @@ class PlaneMarks {
 };
 
 // The scratch of candidate_fragments and SideCounter. Each splitter owns one, so that choosing a
-// node's plane allocates nothing: the arrays keep their capacity from node to node (most nodes are
-// small, and allocating a few arrays for each cost more than counting its sides). Scratch, not
-// state: a copy (a task's clone of the splitter) starts empty.
+// node's plane allocates nothing unless the counted fragments are sampled: the arrays keep their
+// capacity from node to node (most nodes are small, and allocating a few arrays for each cost more
+// than counting its sides). Scratch, not state: a copy (a task's clone of the splitter) starts empty.
 struct CandidateScratch {
   CandidateScratch() = default;
   CandidateScratch(const CandidateScratch&) {}
@@ -82,7 +82,7 @@ ParamSpec sample_param(double default_s);
 // Counts of the node's fragments on each side of a candidate's plane, taken over all of them or, when
 // 0 < s < m, over s of them drawn once per node uniformly without replacement (Crystal Space's
 // estimate): every candidate of the node is counted over the same fragments, so their comparison
-// is not blurred by different draws. A node then costs O(k·s + m log m) instead of O(k·m).
+// is not blurred by different draws. A node then costs O(k·s + m + s log s) instead of O(k·m).
 class SideCounter {
  public:
   SideCounter(const SplitContext& ctx, std::size_t s, Rng& rng, CandidateScratch& scratch);

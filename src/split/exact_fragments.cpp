@@ -300,10 +300,7 @@ using Record = ExactFragments::Record;
 // reads for each plane its box leaves undecided: that pass follows within a chunk, so the lines
 // arrive while the other boxes are tested instead of one miss after another.
 inline void prefetch_vertices(const VertexCofactors* v, std::uint32_t count) {
-  const char* p = reinterpret_cast<const char*>(v);
-  const std::size_t bytes = count * sizeof(VertexCofactors);
-  for (std::size_t off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
-  __builtin_prefetch(p + bytes - 1);
+  prefetch_bytes(v, count * sizeof(VertexCofactors));
 }
 
 // Each path below tests every fragment's box against every plane of the block as
@@ -434,9 +431,10 @@ void ExactFragments::count_sides(std::span<const std::uint32_t> ids, std::span<c
 void ExactFragments::count_block(std::span<const std::uint32_t> ids, std::span<const std::uint32_t> planes,
                                  std::span<SideCounts> out) const {
   BoxPlaneBlock block(planes_, planes);
-  std::uint32_t open[kCountChunk];
-  for (std::size_t first = 0; first < ids.size(); first += kCountChunk) {
-    const std::span<const std::uint32_t> chunk = ids.subspan(first, std::min(kCountChunk, ids.size() - first));
+  std::uint32_t open[FragmentStore::kCountChunk];
+  for (std::size_t first = 0; first < ids.size(); first += FragmentStore::kCountChunk) {
+    const std::span<const std::uint32_t> chunk =
+        ids.subspan(first, std::min(FragmentStore::kCountChunk, ids.size() - first));
     undecided_by_box(vector_path_, block, rec_.data(), cof_.data(), chunk, open);
     for (std::size_t n = 0; n < chunk.size(); ++n)
       if (open[n] != 0) count_vertices(chunk[n], open[n], planes, out);

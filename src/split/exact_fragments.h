@@ -152,9 +152,6 @@ class ExactFragments {
   Side vertex_sides(std::uint32_t id, std::uint32_t plane, const PlaneApprox& approx, int* sides) const;
   void count_block(std::span<const std::uint32_t> ids, std::span<const std::uint32_t> planes,
                    std::span<SideCounts> out) const;
-  // Fragments whose boxes count_block tests before their vertices: their cofactors, prefetched by
-  // the box pass, are still in cache when the vertex pass reads them.
-  static constexpr std::size_t kCountChunk = 32;
   // The vertex tests of fragment id against the planes[j] of the bits of `open`, counted into out[j].
   void count_vertices(std::uint32_t id, std::uint32_t open, std::span<const std::uint32_t> planes,
                       std::span<SideCounts> out) const;

@@ -183,19 +183,10 @@ struct PlaneBlock {
   }
 };
 
-// How many fragments ahead the sphere pass asks for a sphere: the ids are known in advance, the
-// spheres are scattered through the store.
-constexpr std::size_t kSpherePrefetch = 8;
-
 // Asks for the cache lines of a fragment's vertices, which the vertex pass reads for each plane
 // its sphere straddles: that pass follows within a chunk, so the lines arrive while the other
 // spheres are tested instead of one miss after another.
-inline void prefetch_points(std::span<const Vec3> points) {
-  const char* p = reinterpret_cast<const char*>(points.data());
-  const std::size_t bytes = points.size_bytes();
-  for (std::size_t off = 0; off < bytes; off += 64) __builtin_prefetch(p + off);
-  __builtin_prefetch(p + bytes - 1);
-}
+inline void prefetch_points(std::span<const Vec3> points) { prefetch_bytes(points.data(), points.size_bytes()); }
 
 // Each path below tests every fragment's sphere against every plane of the block as classify()
 // does, in Plane::distance's order, ((nx*cx + ny*cy) + nz*cz) + d, then dist - r > eps and
@@ -211,7 +202,7 @@ void straddled_sse2(PlaneBlock& blk, Spheres spheres, Points points, std::span<c
                     std::uint32_t* open) {
   const __m128d pos = _mm_set1_pd(eps), neg = _mm_set1_pd(-eps), one = _mm_set1_pd(1.0);
   for (std::size_t n = 0; n < ids.size(); ++n) {
-    if (n + kSpherePrefetch < ids.size()) __builtin_prefetch(&spheres(ids[n + kSpherePrefetch]));
+    if (n + kPrefetchAhead < ids.size()) __builtin_prefetch(&spheres(ids[n + kPrefetchAhead]));
     const BoundingSphere& s = spheres(ids[n]);
     const __m128d cx = _mm_set1_pd(s.center.x), cy = _mm_set1_pd(s.center.y), cz = _mm_set1_pd(s.center.z);
     const __m128d r = _mm_set1_pd(s.radius);
@@ -259,7 +250,7 @@ __attribute__((target("avx"))) void straddled_avx(PlaneBlock& blk, Spheres spher
                                                   std::span<const std::uint32_t> ids, double eps, std::uint32_t* open) {
   const __m256d pos = _mm256_set1_pd(eps), neg = _mm256_set1_pd(-eps), one = _mm256_set1_pd(1.0);
   for (std::size_t n = 0; n < ids.size(); ++n) {
-    if (n + kSpherePrefetch < ids.size()) __builtin_prefetch(&spheres(ids[n + kSpherePrefetch]));
+    if (n + kPrefetchAhead < ids.size()) __builtin_prefetch(&spheres(ids[n + kPrefetchAhead]));
     const BoundingSphere& s = spheres(ids[n]);
     const __m256d cx = _mm256_set1_pd(s.center.x), cy = _mm256_set1_pd(s.center.y), cz = _mm256_set1_pd(s.center.z);
     const __m256d r = _mm256_set1_pd(s.radius);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "common/page_allocator.h"
+#include "common/prefetch.h"
 #include "common/vector_path.h"
 #include "geometry/fragment_array.h"
 #include "geometry/plane.h"
@@ -47,8 +48,8 @@ class FragmentStore {
   // Planes count_sides tests in one pass: their components and counts stay in L1 beside the loop.
   static constexpr std::size_t kPlaneBlock = 32;
   static_assert(kPlaneBlock <= 32 && kPlaneBlock % 4 == 0, "a bit per plane in a 32-bit mask, planes in fours");
-  // Fragments count_sides tests against a block's spheres before their vertices: the vertices of
-  // those whose sphere some plane straddles are prefetched meanwhile.
+  // Fragments count_sides tests against a block's spheres (or the exact kernel's boxes) before their
+  // vertices: the vertices of those some plane straddles are prefetched meanwhile.
   static constexpr std::size_t kCountChunk = 32;
 
   // Texture coordinates are kept only when `tex_coords` (some input vertex has non-zero ones).
@@ -75,8 +76,9 @@ class FragmentStore {
   FragmentView view(std::uint32_t id) const;
   std::span<const Vec3> points(std::uint32_t id) const { return {pos_.data() + span_[id].first, span_[id].count}; }
   std::uint32_t plane(std::uint32_t id) const { return plane_[id]; }
-  // Starts loading plane(id) into the cache, for a reader that knows which ids come next.
+  // Start loading plane(id) or sphere(id) into the cache, for a reader that knows which ids come next.
   void prefetch_plane(std::uint32_t id) const { __builtin_prefetch(plane_.data() + id); }
+  void prefetch_sphere(std::uint32_t id) const { __builtin_prefetch(sphere_.data() + id); }
   std::uint32_t source(std::uint32_t id) const { return source_[id]; }
   const BoundingSphere& sphere(std::uint32_t id) const { return sphere_[id]; }
   std::size_t vertices_live() const { return live_vertices_; }
@@ -97,13 +99,13 @@ class FragmentStore {
   std::uint64_t side_tests() const { return side_tests_; }
   SideCounts count_sides(std::span<const std::uint32_t> ids, const Plane& p, double eps) const;
   // count_sides for several planes in one pass over the fragments, added to out[j] for planes[j]
-  // (out has planes.size() entries, zeroed for a fresh count): each
-  // fragment's sphere is read once and tested against a block of planes held as arrays of their
-  // components, four planes per AVX instruction where the processor has AVX (asked at run time),
-  // else two per SSE2 instruction (the x86-64 baseline; scalar elsewhere), without a branch; only
-  // a plane the sphere straddles takes the per-vertex path, a chunk of fragments later. The same
-  // operations in the same order as classify(), each rounded alike in a vector lane, so the same
-  // counts on every path (common/vector_path.h).
+  // (out has planes.size() entries, zeroed for a fresh count): each fragment's sphere is read once
+  // and tested against a block of planes held as arrays of their components, four planes per AVX
+  // instruction where the processor has AVX (asked at run time), else two per SSE2 instruction
+  // (the x86-64 baseline; scalar elsewhere), with no branch on the data; only a plane the sphere
+  // straddles takes the per-vertex path, a chunk of fragments later. The same operations in the
+  // same order as classify(), each rounded alike in a vector lane, so the same counts on every
+  // path (common/vector_path.h).
   void count_sides(std::span<const std::uint32_t> ids, std::span<const Plane> planes, double eps,
                    std::span<SideCounts> out) const;
   // The vector instructions count_sides runs on (Widest unless a test asks for the other path).

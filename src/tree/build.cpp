@@ -18,9 +18,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// How many fragments ahead partition asks for a fragment's bounding sphere.
-constexpr std::size_t kSpherePrefetch = 8;
-
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // One pending subtree: its fragments and where to hang the node made from them.
@@ -196,7 +193,7 @@ class RecursiveBuilder {
     const std::uint64_t start = read_ticks();
 #pragma omp task default(none) firstprivate(t, options)
     RecursiveBuilder(t->tree, *t->splitter, *options, std::move(t->prefix), nullptr).run(std::move(t->root));
-    inline_task_ticks_ += read_ticks() - start;
+    inline_task_ticks_ += ticks_since(start);
   }
 
   // Handed-off fragments leave space the main builder, which makes only the top of the tree, would
@@ -216,7 +213,7 @@ class RecursiveBuilder {
     const std::uint64_t start = read_ticks();
     const std::uint64_t tests = store_.side_tests();
     const SplitChoice choice = splitter_.choose(ctx);
-    choose_ticks_ += read_ticks() - start;
+    choose_ticks_ += ticks_since(start);
     choose_side_tests_ += store_.side_tests() - tests;
     switch (choice.kind) {
       case SplitChoice::Kind::Fragment: return {store_.plane(choice.fragment), true};
@@ -260,7 +257,7 @@ class RecursiveBuilder {
     for (std::size_t r = 0; r < size; ++r) {
       // The spheres are scattered through the store; the ids ahead are known (and not yet
       // overwritten: writes stay at or before r).
-      if (r + kSpherePrefetch < size) __builtin_prefetch(&store_.sphere(data[r + kSpherePrefetch]));
+      if (r + kPrefetchAhead < size) store_.prefetch_sphere(data[r + kPrefetchAhead]);
       const std::uint32_t id = data[r];
       const BoundingSphere& s = store_.sphere(id);
       const double d = plane.distance(s.center);

@@ -97,7 +97,7 @@ class ExactBuilder {
     ctx.exact = &frags_;
     const std::uint64_t start = read_ticks();
     const SplitChoice choice = splitter_.choose(ctx);
-    choose_ticks_ += read_ticks() - start;
+    choose_ticks_ += ticks_since(start);
     switch (choice.kind) {
       case SplitChoice::Kind::Fragment: return {frags_.plane(choice.fragment), true};
       case SplitChoice::Kind::Free:
