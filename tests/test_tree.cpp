@@ -505,8 +505,8 @@ TEST(BuildBill, TimeInsideChooseIsBilledToChoosingAndTheRestToTheMachinery) {
 
 // The same bill when subtrees are handed to tasks, on one thread and on two: each task bills its
 // own choose, the main builder leaves out its time in task statements (where the task may run at
-// once), and no part is negative or exceeds the build. A chain of 200 squares hands its last 50 to
-// a task (task_share 4).
+// once), and no part is negative or exceeds the build; on one thread nothing goes unbilled. A chain
+// of 200 squares hands its last 50 to a task (task_share 4).
 TEST(BuildBill, TasksBillTheirOwnChoosing) {
   const int threads = omp_get_max_threads();
   for (int t : {1, 2}) {
@@ -517,8 +517,10 @@ TEST(BuildBill, TasksBillTheirOwnChoosing) {
     EXPECT_GE(tree.stats.choose_seconds, 200 * 200e-6) << t;  // the tasks' choices are billed too
     EXPECT_GT(tree.stats.machinery_seconds, 0.0) << t;
     EXPECT_LT(tree.stats.machinery_seconds, tree.stats.choose_seconds) << t;
-    if (t == 1) {
-      EXPECT_LE(tree.stats.choose_seconds + tree.stats.machinery_seconds, tree.stats.build_seconds * (1 + 1e-9));
+    if (t == 1) {  // one thread: the two make up the build, the task's part included
+      const double billed = tree.stats.choose_seconds + tree.stats.machinery_seconds;
+      EXPECT_LE(billed, tree.stats.build_seconds * (1 + 1e-9));
+      EXPECT_GE(billed, tree.stats.build_seconds * 0.95);
     }
   }
   omp_set_num_threads(threads);
