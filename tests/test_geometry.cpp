@@ -100,6 +100,32 @@ TEST(PlanePool, StoresEachPlaneWithItsFlip) {
   EXPECT_EQ(pool.bytes(), 2 * sizeof(Plane));
 }
 
+// The lookup table grows (64 slots at first) and compares a tag of the hash before a plane: each of
+// 20,000 planes, among them pairs that differ in one component or only in the sign of a zero, keeps
+// one index in each orientation, however many times and in whichever orientation it comes back.
+TEST(PlanePool, FindsEveryPlaneAndItsFlipAfterTheTableGrows) {
+  Rng rng(7);
+  std::vector<Plane> planes;
+  for (int i = 0; i < 10000; ++i) {
+    const Plane p = Plane::through(normalize(Vec3{rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5}),
+                                   {rng.uniform(), rng.uniform(), rng.uniform()});
+    planes.push_back(p);
+    planes.push_back({p.n, std::nextafter(p.d, 2.0)});  // a neighbour in one bit of d
+  }
+  planes.push_back({{0, 0, 1}, 0.0});
+  PlanePool pool;
+  std::vector<std::uint32_t> index;
+  for (const Plane& p : planes) index.push_back(pool.add(p));
+  EXPECT_EQ(pool.size(), 2 * planes.size());
+  EXPECT_EQ(pool.add({{0, 0, 1}, -0.0}), index.back());  // -0 equals +0
+  for (std::size_t i = 0; i < planes.size(); ++i) {
+    EXPECT_EQ(index[i], 2 * i);
+    EXPECT_EQ(pool.add(planes[i].flipped()), PlanePool::flip(index[i]));
+    EXPECT_EQ(pool.add(planes[i], PlanePool::hash(planes[i])), index[i]);
+  }
+  EXPECT_EQ(pool.size(), 2 * planes.size());
+}
+
 TEST(ConvexPolytope, BoxVolumeAndArea) {
   const auto box = ConvexPolytope::box({{0, 0, 0}, {1, 2, 3}});
   EXPECT_NEAR(box.volume(), 6.0, 1e-12);

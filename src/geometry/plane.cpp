@@ -19,35 +19,38 @@ std::uint64_t oriented_hash(const Plane& p) {
   return h;
 }
 
-// The same for a plane and its flip, so one probe sequence finds a plane in either orientation.
-std::uint64_t hash(const Plane& p) { return oriented_hash(p) + oriented_hash(p.flipped()); }
+constexpr std::uint64_t tag_of(std::uint64_t hash) { return hash >> 32; }
 
 }  // namespace
 
-std::uint32_t PlanePool::find(const Plane& p) const {
+std::uint64_t PlanePool::hash(const Plane& p) { return oriented_hash(p) + oriented_hash(p.flipped()); }
+
+std::uint32_t PlanePool::find(const Plane& p, std::uint64_t hash) const {
   if (slots_.empty()) return kNotFound;
   const std::size_t mask = slots_.size() - 1;
   const Plane q = p.flipped();
-  for (std::size_t i = hash(p) & mask;; i = (i + 1) & mask) {
-    const std::uint32_t s = slots_[i];
+  for (std::size_t i = hash & mask;; i = (i + 1) & mask) {
+    const std::uint64_t s = slots_[i];
     if (s == 0) return kNotFound;
-    if (planes_[s - 1] == p) return 2 * (s - 1);
-    if (planes_[s - 1] == q) return 2 * (s - 1) + 1;
+    if ((s >> 32) != tag_of(hash)) continue;
+    const auto pair = static_cast<std::uint32_t>(s) - 1;
+    if (planes_[pair] == p) return 2 * pair;
+    if (planes_[pair] == q) return 2 * pair + 1;
   }
 }
 
-void PlanePool::insert(std::uint32_t pair) {
+void PlanePool::insert(std::uint32_t pair, std::uint64_t hash) {
   const std::size_t mask = slots_.size() - 1;
-  std::size_t i = hash(planes_[pair]) & mask;
+  std::size_t i = hash & mask;
   while (slots_[i] != 0) i = (i + 1) & mask;
-  slots_[i] = pair + 1;
+  slots_[i] = (tag_of(hash) << 32) | (pair + 1);
 }
 
 void PlanePool::rehash(std::size_t pairs) {
   std::size_t n = kInitialSlots;
   while (n < 2 * pairs) n *= 2;
   slots_.assign(n, 0);
-  for (std::uint32_t pair = 0; pair < planes_.size(); ++pair) insert(pair);
+  for (std::uint32_t pair = 0; pair < planes_.size(); ++pair) insert(pair, hash(planes_[pair]));
   indexed_ = planes_.size();
 }
 
@@ -56,15 +59,15 @@ void PlanePool::reserve(std::size_t pairs) {
   if (slots_.size() < 2 * pairs) rehash(pairs);
 }
 
-std::uint32_t PlanePool::add(const Plane& p) {
+std::uint32_t PlanePool::add(const Plane& p, std::uint64_t hash) {
   if (indexed_ < planes_.size()) rehash(planes_.size());
-  if (const std::uint32_t i = find(p); i != kNotFound) return i;
+  if (const std::uint32_t i = find(p, hash); i != kNotFound) return i;
   const auto pair = static_cast<std::uint32_t>(planes_.size());
   planes_.push_back(p);
   if (2 * planes_.size() > slots_.size()) {
     rehash(2 * planes_.size());
   } else {
-    insert(pair);
+    insert(pair, hash);
     indexed_ = planes_.size();
   }
   return 2 * pair;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/prefetch.h"
 #include "geometry/segment2.h"
 
 namespace bsp {
@@ -23,11 +24,13 @@ bool is_planar(const Polygon& poly, const Plane& plane, double eps) {
   return true;
 }
 
-// A cleaned input fragment, ready to pool.
+// A cleaned input fragment, ready to pool: its plane's hash is computed beside the cleaning, on
+// every thread, so that pooling (in input order, on one) only looks it up.
 struct Part {
   Polygon poly;
   Plane plane;
   BoundingSphere sphere;
+  std::uint64_t plane_hash = 0;
 };
 
 // One chunk's parts in input order and its share of the input counters.
@@ -48,7 +51,7 @@ void keep_one(Polygon&& poly, double eps, Chunk& out) {
     return;
   }
   const BoundingSphere s = bounding_sphere(poly);
-  out.parts.push_back({std::move(poly), *plane, s});
+  out.parts.push_back({std::move(poly), *plane, s, PlanePool::hash(*plane)});
 }
 
 // A 2D segment (geometry/segment2.h): pooled with its line; shorter than eps, dropped. Its length
@@ -64,7 +67,7 @@ void load_segment(const Polygon& seg, std::uint32_t source, double eps, Chunk& o
   }
   Polygon kept{seg.verts, source};
   const BoundingSphere s = bounding_sphere(kept);
-  out.parts.push_back({std::move(kept), *line, s});
+  out.parts.push_back({std::move(kept), *line, s, PlanePool::hash(*line)});
 }
 
 void load_one(const Polygon& poly, std::uint32_t source, double eps, Chunk& out) {
@@ -91,7 +94,17 @@ void pool_chunk(Chunk& c, TreeDraft& tree, BuildStats& stats, std::vector<std::u
   stats.dropped_area += c.dropped_area;
   stats.dropped_input += c.dropped_input;
   stats.triangulated_extra += c.triangulated_extra;
-  for (const Part& p : c.parts) ids.push_back(tree.store.add(p.poly, tree.planes.add(p.plane), p.sphere));
+  const std::size_t n = c.parts.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    // The table slots and the cleaned polygons' vertices are scattered: a cache miss each.
+    if (i + kPrefetchAhead < n) {
+      const Part& ahead = c.parts[i + kPrefetchAhead];
+      tree.planes.prefetch_slot(ahead.plane_hash);
+      prefetch_bytes(ahead.poly.verts.data(), ahead.poly.verts.size() * sizeof(Vertex));
+    }
+    const Part& p = c.parts[i];
+    ids.push_back(tree.store.add(p.poly, tree.planes.add(p.plane, p.plane_hash), p.sphere));
+  }
   c = Chunk{};
 }
 
