@@ -326,13 +326,15 @@ TEST(HeuristicParams, UnknownKeysAndOutOfRangeValuesAreRejected) {
   }
 }
 
-TEST(HeuristicParams, HalvingFallbacksAreRegisteredAutopartitions) {
-  const auto& halving = find_heuristic("halving");
-  EXPECT_FALSE(halving.autopartition);
-  const auto fallback = std::find_if(halving.params.begin(), halving.params.end(),
-                                     [](const ParamSpec& s) { return s.name == "fallback"; });
-  ASSERT_NE(fallback, halving.params.end());
-  for (const auto& name : fallback->choices) EXPECT_TRUE(find_heuristic(name).autopartition) << name;
+TEST(HeuristicParams, FreePlaneFallbacksAreRegisteredAutopartitions) {
+  for (const char* name : {"halving", "octree"}) {
+    const auto& h = find_heuristic(name);
+    EXPECT_FALSE(h.autopartition) << name;
+    const auto fallback =
+        std::find_if(h.params.begin(), h.params.end(), [](const ParamSpec& s) { return s.name == "fallback"; });
+    ASSERT_NE(fallback, h.params.end()) << name;
+    for (const auto& f : fallback->choices) EXPECT_TRUE(find_heuristic(f).autopartition) << name << " " << f;
+  }
 }
 
 TEST(HeuristicCatalog, JsonListsEveryHeuristicWithItsParametersAndDefaults) {

@@ -108,6 +108,38 @@ TEST(SolidTree, ConvexSolidAutopartitionIsAChainHalvingIsNot) {
   EXPECT_LT(halving.depth * 4, chain.depth);
 }
 
+// The octree front end cuts a convex solid on axis-aligned lattice planes until cells hold at most
+// leaf_faces faces: shallow where the autopartition is a chain, and two operands whose extents are
+// alike get the same top planes (a lattice point needs no box), which merging meets as coplanar
+// nodes: partitioning visits a small fraction of the nodes the chains make it visit.
+TEST(SolidTree, OctreeSolidIsShallowAndOperandsShareItsTopPlanes) {
+  const Pair p = make_pair_of("sphere", {{"n", "2000"}}, {{"n", "2000"}, {"x", "0.3"}, {"scale", "0.9"}});
+  const SolidTree chain_a = solid_of(p.a, "first", p.box), chain_b = solid_of(p.b, "first", p.box);
+  const SolidTree a = solid_of(p.a, "octree", p.box), b = solid_of(p.b, "octree", p.box);
+  EXPECT_LT(solid_size(a).depth * 4, solid_size(chain_a).depth);
+  // The root parts the sphere at x = 0 for both: 0 is the coarsest lattice point in the middle half
+  // of x in [-1, 1] and of x in [-0.6, 1.2].
+  ASSERT_FALSE(is_leaf(a.root));
+  ASSERT_FALSE(is_leaf(b.root));
+  EXPECT_EQ(a.nodes[a.root].plane, (Plane{{1, 0, 0}, 0}));
+  EXPECT_EQ(b.nodes[b.root].plane, a.nodes[a.root].plane);
+  // Below the root every plane is axis-aligned down to cells of at most 64 faces (leaf_faces): a
+  // node's plane is axis-aligned exactly when it is not a face's (a sphere has no axis-aligned face).
+  std::size_t axis_aligned = 0;
+  for (const SolidNode& n : a.nodes) {
+    const int zeros = (n.plane.n.x == 0) + (n.plane.n.y == 0) + (n.plane.n.z == 0);
+    axis_aligned += zeros == 2;
+  }
+  EXPECT_GE(axis_aligned, 2000u / 64);
+  MergeStats octree, chain;
+  const SolidTree r = merge(a, b, SetOp::Union, &octree);
+  merge(chain_a, chain_b, SetOp::Union, &chain);
+  EXPECT_LT(octree.partition_nodes * 10, chain.partition_nodes);
+  const SolidCheck c = prove(r, p, SetOp::Union);
+  EXPECT_EQ(c.mismatches, 0u);
+  EXPECT_EQ(c.boundary.edges.border_edges, 0u);
+}
+
 TEST(SolidInput, OpenOrMisorientedMeshesAreRefusedWithTheCount) {
   auto box = solid_scene("box", {{"seed", "0"}});
   EXPECT_NO_THROW(require_closed_solid(box, 1e-9, "box"));
@@ -136,7 +168,7 @@ TEST(SolidInput, OpenOrMisorientedMeshesAreRefusedWithTheCount) {
 
 TEST(Merge, OverlappingSpheresEveryOperationAndHeuristicMatchCgal) {
   const Pair p = make_pair_of("sphere", {{"n", "400"}}, {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}});
-  for (const std::string h : {"first", "crystal", "halving", "naylor"}) {
+  for (const std::string h : {"first", "crystal", "halving", "naylor", "octree"}) {
     const SolidTree a = solid_of(p.a, h, p.box), b = solid_of(p.b, h, p.box);
     for (SetOp op : kOps) {
       MergeStats stats;

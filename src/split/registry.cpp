@@ -15,6 +15,7 @@ const std::vector<HeuristicInfo>& heuristics() {
       crystal_heuristic(),
       naylor_heuristic(),
       halving_heuristic(),
+      octree_heuristic(),
   };
   return all;
 }

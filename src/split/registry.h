@@ -40,5 +40,6 @@ HeuristicInfo quake_heuristic();
 HeuristicInfo crystal_heuristic();
 HeuristicInfo naylor_heuristic();
 HeuristicInfo halving_heuristic();
+HeuristicInfo octree_heuristic();
 
 }  // namespace bsp
