@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include "geometry/polygon.h"
+#include "geometry/point_grid.h"
 #include "geometry/polytope.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -124,6 +127,35 @@ TEST(PlanePool, FindsEveryPlaneAndItsFlipAfterTheTableGrows) {
     EXPECT_EQ(pool.add(planes[i], PlanePool::hash(planes[i])), index[i]);
   }
   EXPECT_EQ(pool.size(), 2 * planes.size());
+}
+
+// The grid's table grows from 64 slots as cells fill: after 20,000 points in about 8,000 cells,
+// each query around a point reports exactly the points of the 27 cells around it (against a scan of
+// all), each once.
+TEST(PointGrid, ReportsEveryPointOfTheNeighbouringCellsAfterGrowing) {
+  Rng rng(11);
+  const double cell = 0.05;
+  std::vector<Vec3> pts;
+  PointGrid grid(cell);
+  for (std::uint32_t i = 0; i < 20000; ++i) {
+    pts.push_back({rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-0.05, 0.05)});
+    grid.insert(pts.back(), i);
+  }
+  const auto cell_of = [&](const Vec3& p) {
+    return std::array<double, 3>{std::floor(p.x / cell), std::floor(p.y / cell), std::floor(p.z / cell)};
+  };
+  for (std::uint32_t q = 0; q < pts.size(); q += 97) {
+    const auto c = cell_of(pts[q]);
+    std::vector<std::uint32_t> expected, got;
+    for (std::uint32_t i = 0; i < pts.size(); ++i) {
+      const auto d = cell_of(pts[i]);
+      if (std::abs(d[0] - c[0]) <= 1 && std::abs(d[1] - c[1]) <= 1 && std::abs(d[2] - c[2]) <= 1) expected.push_back(i);
+    }
+    grid.around(pts[q], [&](std::uint32_t id) { got.push_back(id); });
+    std::vector<std::uint32_t> sorted = got;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(sorted, expected) << q;
+  }
 }
 
 TEST(ConvexPolytope, BoxVolumeAndArea) {

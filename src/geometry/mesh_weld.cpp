@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <vector>
 
 #include "geometry/point_grid.h"
 #include "geometry/polygon.h"
@@ -82,14 +82,21 @@ std::uint64_t split_t_junctions(IndexedMesh& mesh, double tol) {
       out.corners.push_back(ia);
       if (len2 == 0) continue;
       on_edge.clear();
+      const auto consider = [&](std::uint32_t v) {
+        if (v == ia || v == ib) return;
+        const double t = dot(mesh.vertices[v] - a, ab) / len2;
+        if (t <= 0 || t >= 1) return;
+        if (length(mesh.vertices[v] - (a + ab * t)) <= tol) on_edge.push_back({t, v});
+      };
+      // Every vertex within tol of the edge is in the cells its box (grown by tol) meets, and in
+      // the 27 cells around some half-cell step along it: the box where it meets fewer cells than
+      // the steps would look at (a short or axis-parallel edge), else the steps. Either finds the
+      // same vertices, which sorting puts in one order.
       const auto steps = static_cast<std::size_t>(std::ceil(std::sqrt(len2) / (0.5 * grid.cell()))) + 1;
-      for (std::size_t s = 0; s <= steps; ++s)
-        grid.around(a + ab * (static_cast<double>(s) / static_cast<double>(steps)), [&](std::uint32_t v) {
-          if (v == ia || v == ib) return;
-          const double t = dot(mesh.vertices[v] - a, ab) / len2;
-          if (t <= 0 || t >= 1) return;
-          if (length(mesh.vertices[v] - (a + ab * t)) <= tol) on_edge.push_back({t, v});
-        });
+      const Vec3 b = mesh.vertices[ib], margin{tol, tol, tol};
+      if (!grid.in_box(min(a, b) - margin, max(a, b) + margin, 27 * (steps + 1), consider))
+        for (std::size_t s = 0; s <= steps; ++s)
+          grid.around(a + ab * (static_cast<double>(s) / static_cast<double>(steps)), consider);
       std::sort(on_edge.begin(), on_edge.end());
       on_edge.erase(std::unique(on_edge.begin(), on_edge.end()), on_edge.end());
       for (const auto& e : on_edge) out.corners.push_back(e.second);
@@ -102,18 +109,36 @@ std::uint64_t split_t_junctions(IndexedMesh& mesh, double tol) {
 }
 
 EdgeReport edge_report(const IndexedMesh& mesh) {
-  std::unordered_map<std::uint64_t, std::int64_t> count;  // (lo, hi) -> uses lo->hi minus uses hi->lo
-  std::unordered_map<std::uint64_t, std::uint32_t> directed;
-  EdgeReport r;
+  // Every directed edge as (from, to), sorted: equal directed edges are adjacent, and so are the
+  // two directions of an undirected edge once each is keyed by its ends in order. Sorting flat
+  // keys, not hashing them into node-based maps, keeps a 10^5-face result's report in milliseconds.
+  std::vector<std::uint64_t> directed;
+  directed.reserve(mesh.corners.size());
   for (std::size_t f = 0; f < mesh.face_count(); ++f)
     for (std::uint32_t i = mesh.start[f]; i < mesh.start[f + 1]; ++i) {
       const std::uint32_t j = i + 1 == mesh.start[f + 1] ? mesh.start[f] : i + 1;
-      const std::uint64_t a = mesh.corners[i], b = mesh.corners[j];
-      if (++directed[(a << 32) | b] == 2) ++r.repeated_directed;
-      count[(std::min(a, b) << 32) | std::max(a, b)] += a < b ? 1 : -1;
+      directed.push_back((std::uint64_t{mesh.corners[i]} << 32) | mesh.corners[j]);
     }
-  r.edges = count.size();
-  for (const auto& [edge, balance] : count) r.border_edges += balance != 0;
+  std::sort(directed.begin(), directed.end());
+  EdgeReport r;
+  for (std::size_t i = 1; i < directed.size(); ++i)
+    r.repeated_directed += directed[i] == directed[i - 1] && (i < 2 || directed[i - 2] != directed[i]);
+  // Undirected: (lo, hi) with +1 for lo -> hi and -1 for hi -> lo; a border edge's uses do not cancel.
+  std::vector<std::pair<std::uint64_t, int>> undirected;
+  undirected.reserve(directed.size());
+  for (const std::uint64_t e : directed) {
+    const std::uint64_t a = e >> 32, b = e & 0xffffffffu;
+    undirected.push_back({(std::min(a, b) << 32) | std::max(a, b), a < b ? 1 : -1});
+  }
+  std::sort(undirected.begin(), undirected.end());
+  for (std::size_t i = 0; i < undirected.size();) {
+    std::int64_t balance = 0;
+    std::size_t k = i;
+    for (; k < undirected.size() && undirected[k].first == undirected[i].first; ++k) balance += undirected[k].second;
+    ++r.edges;
+    r.border_edges += balance != 0;
+    i = k;
+  }
   return r;
 }
 
