@@ -1,11 +1,15 @@
 // bspbench_bench_merge: set operations by merging solid BSP trees [Naylor1990] beside CGAL's
 // corefinement of the same meshes, in the same run:
 //   merge/OP/PAIR/n:N/HEURISTIC   one iteration = build both operands' solid trees + merge +
-//       reduce; items = input triangles of both operands; counters:
-//       build_seconds, merge_seconds (merge and reduce), the medians of the iterations;
+//       reduce + the result's boundary as a welded mesh; items = input triangles of both operands;
+//       counters: build_seconds, merge_seconds (merge and reduce), boundary_seconds (the boundary
+//           extracted and welded: mesh out), the medians of the iterations;
+//       peak_resident_bytes: the most the process held resident during an iteration (VmHWM after
+//           a trim and restart before it; the operands and CGAL's copies of them included);
 //       corefine_seconds: median of CGAL PMP::corefine_and_compute_OP on the same two meshes
 //           (copies of both go in, since corefinement changes its inputs; the copies are timed);
-//       merge_vs_corefine (builds included) and merge_only_vs_corefine (merge and reduce only);
+//       merge_vs_corefine (builds included), mesh_vs_corefine (builds and boundary included: mesh
+//           in, mesh out, as corefinement) and merge_only_vs_corefine (merge and reduce only);
 //       up to 10^4 triangles each, nef_seconds: median of CGAL's Nef polyhedra doing the same
 //           (both conversions to Nef included; measured once per operands and operation), and
 //           merge_vs_nef (builds included);
@@ -25,9 +29,11 @@
 //
 // Which heuristics run where: chains (first and the autopartitions on a convex sphere) make merging
 // quadratic in time and memory (crystal's 10^5-sphere union ran out of 24 GB), and naylor's build
-// on a 10^4 sphere takes seconds; so 10^5 runs halving only, and naylor stops at 10^4.
+// on a 10^4 sphere takes seconds; so 10^5 runs halving and octree only, 10^6 (asked for with
+// --bsp_sizes) octree only, without the kernel comparison, and naylor stops at 10^4.
 // Select with --bsp_heuristics and --bsp_sizes (bench_common.h), e.g.
 //   build/bench/bspbench_bench_merge --bsp_sizes=10000 --bsp_heuristics=halving
+//   build/bench/bspbench_bench_merge --bsp_sizes=1000000 --bsp_heuristics=octree
 #include <algorithm>
 #include <cmath>
 #include <iostream>
@@ -38,6 +44,8 @@
 #include "catalog.h"
 #include "mesh_scenes.h"
 #include "metrics/statistics.h"
+#include "resident_memory.h"
+#include "solid/boundary.h"
 #include "solid/cells.h"
 #include "solid/exact_merge.h"
 #include "solid/solid_build.h"
@@ -49,7 +57,8 @@ namespace bsp::bench {
 namespace {
 
 constexpr int kReferenceRepeats = 5;
-constexpr std::uint64_t kLargeN = 100000;    // from here, halving only
+constexpr std::uint64_t kLargeN = 100000;     // from here, halving and octree only
+constexpr std::uint64_t kHugeN = 1000000;     // from here, octree only, and no kernel comparison
 constexpr std::uint64_t kNaylorMaxN = 10000;
 constexpr benchmark::IterationCount kSlowRuns = 3;  // iterations of runs that take seconds each
 constexpr double kMeshOffset = 0.05;                // of the mesh's bounding box, per axis
@@ -124,11 +133,14 @@ double nef_seconds(const Operands& o, SetOp op, double& volume) {
 }
 
 void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp op) {
-  std::vector<double> builds, merges;
+  std::vector<double> builds, merges, boundaries;
   SolidTree result;
   MergeStats stats;
-  std::uint64_t operand_nodes = 0;
+  std::uint64_t operand_nodes = 0, peak = 0;
+  bool peak_known = true;
   for (auto _ : state) {
+    result = SolidTree{};
+    peak_known &= restart_peak().has_value();
     const auto start = Clock::now();
     auto splitter = make_splitter(h, {}, kSeed);
     const SolidBuild a = build_solid(o->a, *splitter, o->box);
@@ -137,7 +149,14 @@ void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp o
     const auto merge_start = Clock::now();
     result = merge(a.solid, b.solid, op, &stats);
     merges.push_back(seconds_since(merge_start));
+    const auto boundary_start = Clock::now();
+    IndexedMesh mesh;
+    check_boundary(solid_boundary(result), result.tol.plane_eps, &mesh);
+    boundaries.push_back(seconds_since(boundary_start));
     operand_nodes = a.solid.nodes.size() + b.solid.nodes.size();
+    const auto held = peak_resident();
+    peak_known &= held.has_value();
+    peak = std::max(peak, held.value_or(0));
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(o->a.size() + o->b.size()));
   std::vector<double> corefines;
@@ -147,11 +166,15 @@ void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp o
     exact_volume = corefine(*o->exact_a, *o->exact_b, op).volume;
     corefines.push_back(seconds_since(start));
   }
-  const double build = median(builds), merge_only = median(merges), reference = median(corefines);
+  const double build = median(builds), merge_only = median(merges), boundary = median(boundaries);
+  const double reference = median(corefines);
   state.counters["build_seconds"] = build;
   state.counters["merge_seconds"] = merge_only;
+  state.counters["boundary_seconds"] = boundary;
   state.counters["corefine_seconds"] = reference;
   state.counters["merge_vs_corefine"] = (build + merge_only) / reference;
+  state.counters["mesh_vs_corefine"] = (build + merge_only + boundary) / reference;
+  if (peak_known) state.counters["peak_resident_bytes"] = static_cast<double>(peak);
   state.counters["merge_only_vs_corefine"] = merge_only / reference;
   state.counters["volume_difference"] = std::abs(solid_volume(result) - exact_volume) / std::abs(exact_volume);
   state.counters["result_nodes"] = static_cast<double>(stats.after.nodes);
@@ -202,7 +225,8 @@ void bm_kernel_merge(benchmark::State& state, const Operands* o, std::string h, 
 }
 
 bool runs_at(const std::string& h, std::uint64_t n) {
-  if (n >= kLargeN) return h == "halving";
+  if (n >= kHugeN) return h == "octree";
+  if (n >= kLargeN) return h == "halving" || h == "octree";
   return h != "naylor" || n <= kNaylorMaxN;
 }
 
@@ -211,6 +235,7 @@ void register_one(const std::string& pair, std::uint64_t n, const Operands* o, c
   auto* b = benchmark::RegisterBenchmark(name.c_str(), bm_merge, o, h, op);
   b->Unit(benchmark::kMillisecond)->UseRealTime();
   if (n >= 10000) b->Iterations(kSlowRuns);
+  if (n >= kHugeN) return;
   const std::string kernel_name = "merge_kernel" + name.substr(name.find('/'));
   auto* k = benchmark::RegisterBenchmark(kernel_name.c_str(), bm_kernel_merge, o, h, op);
   k->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -240,7 +265,7 @@ void register_all(const Selection& sel) {
 int main(int argc, char** argv) {
   try {
     const auto sel =
-        bsp::bench::take_selection(argc, argv, {{}, {"first", "crystal", "halving", "naylor"}, {1000, 10000, 100000}});
+        bsp::bench::take_selection(argc, argv, {{}, {"first", "crystal", "halving", "naylor", "octree"}, {1000, 10000, 100000}});
     bsp::bench::register_all(sel);
     return bsp::bench::run_benchmarks(argc, argv, "bspbench_bench_merge");
   } catch (const std::exception& e) {
