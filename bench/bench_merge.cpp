@@ -3,7 +3,8 @@
 //   merge/OP/PAIR/n:N/HEURISTIC   one iteration = build both operands' solid trees + merge +
 //       reduce + the result's boundary as a welded mesh; items = input triangles of both operands;
 //       counters: build_seconds, merge_seconds (merge and reduce), boundary_seconds (the boundary
-//           extracted and welded: mesh out), the medians of the iterations;
+//           extracted, welded and its T-junctions split: mesh out; with the closedness check's edge
+//           report and volume, a few percent of it), the medians of the iterations;
 //       peak_resident_bytes: the most the process held resident during an iteration (VmHWM after
 //           a trim and restart before it; the operands and CGAL's copies of them included);
 //       corefine_seconds: median of CGAL PMP::corefine_and_compute_OP on the same two meshes

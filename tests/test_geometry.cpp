@@ -129,9 +129,10 @@ TEST(PlanePool, FindsEveryPlaneAndItsFlipAfterTheTableGrows) {
   EXPECT_EQ(pool.size(), 2 * planes.size());
 }
 
-// The grid's table grows from 64 slots as cells fill: after 20,000 points in about 8,000 cells,
+// The grid's table grows from 64 slots as cells fill: after 20,000 points in about 3,200 cells,
 // each query around a point reports exactly the points of the 27 cells around it (against a scan of
-// all), each once.
+// all), each once; so does a query of the cells a box meets, which declines a box of more cells
+// than it is allowed to read.
 TEST(PointGrid, ReportsEveryPointOfTheNeighbouringCellsAfterGrowing) {
   Rng rng(11);
   const double cell = 0.05;
@@ -155,6 +156,20 @@ TEST(PointGrid, ReportsEveryPointOfTheNeighbouringCellsAfterGrowing) {
     std::vector<std::uint32_t> sorted = got;
     std::sort(sorted.begin(), sorted.end());
     EXPECT_EQ(sorted, expected) << q;
+    // The box from the point to 2.5 cells beyond it in x and y meets 4 x 4 x 1 or 2 cells.
+    const Vec3 lo = pts[q], hi = pts[q] + Vec3{2.5 * cell, 2.5 * cell, 0};
+    const auto d0 = cell_of(lo), d1 = cell_of(hi);
+    std::vector<std::uint32_t> in_cells, boxed;
+    for (std::uint32_t i = 0; i < pts.size(); ++i) {
+      const auto d = cell_of(pts[i]);
+      if (d[0] >= d0[0] && d[0] <= d1[0] && d[1] >= d0[1] && d[1] <= d1[1] && d[2] >= d0[2] && d[2] <= d1[2])
+        in_cells.push_back(i);
+    }
+    EXPECT_FALSE(grid.in_box(lo, hi, 8, [&](std::uint32_t id) { boxed.push_back(id); }));
+    EXPECT_TRUE(boxed.empty());
+    EXPECT_TRUE(grid.in_box(lo, hi, 64, [&](std::uint32_t id) { boxed.push_back(id); }));
+    std::sort(boxed.begin(), boxed.end());
+    EXPECT_EQ(boxed, in_cells) << q;
   }
 }
 

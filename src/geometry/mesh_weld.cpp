@@ -88,12 +88,13 @@ std::uint64_t split_t_junctions(IndexedMesh& mesh, double tol) {
         if (t <= 0 || t >= 1) return;
         if (length(mesh.vertices[v] - (a + ab * t)) <= tol) on_edge.push_back({t, v});
       };
-      // Every vertex within tol of the edge is in the cells its box (grown by tol) meets, and in
-      // the 27 cells around some half-cell step along it: the box where it meets fewer cells than
-      // the steps would look at (a short or axis-parallel edge), else the steps. Either finds the
-      // same vertices, which sorting puts in one order.
+      // Every vertex within tol of the edge is in the cells its box (grown by 2 tol, so that a
+      // distance rounded below tol is inside too) meets, and in the 27 cells around some half-cell
+      // step along it: the box where it meets fewer cells than the steps would look at (a short or
+      // axis-parallel edge), else the steps. Either finds the same vertices, which sorting puts in
+      // one order.
       const auto steps = static_cast<std::size_t>(std::ceil(std::sqrt(len2) / (0.5 * grid.cell()))) + 1;
-      const Vec3 b = mesh.vertices[ib], margin{tol, tol, tol};
+      const Vec3 b = mesh.vertices[ib], margin{2 * tol, 2 * tol, 2 * tol};
       if (!grid.in_box(min(a, b) - margin, max(a, b) + margin, 27 * (steps + 1), consider))
         for (std::size_t s = 0; s <= steps; ++s)
           grid.around(a + ab * (static_cast<double>(s) / static_cast<double>(steps)), consider);

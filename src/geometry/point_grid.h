@@ -45,7 +45,9 @@ class PointGrid {
     const Cell a = cell_of(lo), b = cell_of(hi);
     const auto span = [](std::int64_t from, std::int64_t to) { return static_cast<std::uint64_t>(to - from + 1); };
     const std::uint64_t nx = span(a.x, b.x), ny = span(a.y, b.y), nz = span(a.z, b.z);
-    if (nx > max_cells || ny > max_cells || nz > max_cells || nx * ny * nz > max_cells) return false;
+    // Each factor is at most max_cells before the next multiplies it: the product cannot wrap.
+    if (nx > max_cells || ny > max_cells || nz > max_cells || nx * ny > max_cells || nx * ny * nz > max_cells)
+      return false;
     for (std::int64_t x = a.x; x <= b.x; ++x)
       for (std::int64_t y = a.y; y <= b.y; ++y)
         for (std::int64_t z = a.z; z <= b.z; ++z) {

@@ -4,8 +4,9 @@
 //  1. axis: the longest extent of the box of the node's fragments (x, y, z on ties); failing it,
 //     the next longest;
 //  2. offset: the coarsest point of the dyadic lattice k·2^e (the largest e) inside the middle half
-//     of the fragments' extent along that axis; 0 when the middle half holds 0. The plane is usable when at least one fragment lies wholly behind it
-//     and one wholly in front (farther than plane_eps), as `halving` requires.
+//     of the fragments' extent along that axis; 0 when the middle half holds 0. The plane is
+//     usable when at least one fragment lies wholly behind it and one wholly in front (farther
+//     than plane_eps), as `halving` requires.
 // A node of at most `leaf_faces` fragments, or one no axis parts, goes to the autopartition
 // heuristic named by `fallback`: its faces' own planes, so the tree's lower levels are small
 // autopartitions of the faces a spatial cell holds, not one chain as deep as the solid has faces.
@@ -33,16 +34,21 @@ namespace bsp {
 namespace {
 
 // The coarsest lattice point k·2^e in [a, b], a < b. [a, b] holds a multiple of 2^e for
-// 2^e <= b - a; e rises while it holds a multiple of 2^(e+1) (at most log2(max|a|, |b|) / (b - a)
-// steps, as 0 is outside). Two consecutive multiples of 2^e include one of 2^(e+1), so the last e
-// has exactly one.
+// 2^e <= b - a (e is lowered while the rounded difference says otherwise); e rises while it holds a
+// multiple of 2^(e+1) (at most log2(max(|a|, |b|) / (b - a)) steps, as 0 is outside). Two
+// consecutive multiples of 2^e include one of 2^(e+1), so the last e has exactly one.
 double coarsest_lattice_point(double a, double b) {
   if (a <= 0 && b >= 0) return 0;
   const auto holds_multiple = [&](int e) { return std::ceil(std::ldexp(a, -e)) <= std::floor(std::ldexp(b, -e)); };
   int e = std::ilogb(b - a);
+  while (!holds_multiple(e)) --e;
   while (e < std::numeric_limits<double>::max_exponent && holds_multiple(e + 1)) ++e;
   return std::ldexp(std::ceil(std::ldexp(a, -e)), e);
 }
+
+// The plane lies in the middle half of the fragments' extent: this much of the extent is kept
+// clear at each end, so that neither side is a sliver of the node.
+constexpr double kEndMargin = 0.25;
 
 struct OctreeSettings {
   std::size_t leaf_faces;
@@ -59,8 +65,8 @@ class OctreeSplitter final : public Splitter {
     if (ctx.ids.size() <= s_.leaf_faces) return fallback_->choose(ctx);
     measure_extents(ctx);
     for (int axis : axes_by_extent()) {
-      const double a = box_.lo[axis] + 0.25 * (box_.hi[axis] - box_.lo[axis]);
-      const double b = box_.hi[axis] - 0.25 * (box_.hi[axis] - box_.lo[axis]);
+      const double a = box_.lo[axis] + kEndMargin * (box_.hi[axis] - box_.lo[axis]);
+      const double b = box_.hi[axis] - kEndMargin * (box_.hi[axis] - box_.lo[axis]);
       if (!(a < b)) break;  // the fragments have no extent along this axis, nor any shorter one
       const double x = coarsest_lattice_point(a, b);
       if (parts(axis, x, ctx.tol.plane_eps)) {
@@ -110,9 +116,9 @@ class OctreeSplitter final : public Splitter {
 };
 
 // Autopartition heuristics of the registry, the default first (as halving's fallback; a test checks
-// each is registered). The defaults, first below 64 faces, are the fastest union of two spheres of
-// 10^4 and 10^5 faces, builds and merge included, among leaf_faces 4 to 512 with first or crystal
-// (docs/solids.md).
+// each is registered). The defaults, first below 64 faces, gave the fastest union of two spheres of
+// 10^4 and 10^5 faces, builds and merge included, of leaf_faces 4 to 512 with first and 4 to 64
+// with crystal (docs/solids.md).
 std::vector<std::string> fallback_names() {
   return {"first", "balanced", "min-relation", "weighted", "quake", "crystal", "naylor", "random"};
 }
