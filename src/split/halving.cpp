@@ -26,6 +26,7 @@
 
 #include "common/rng.h"
 #include "split/parallel_groups.h"
+#include "split/fallbacks.h"
 #include "split/registry.h"
 
 namespace bsp {
@@ -142,12 +143,6 @@ class HalvingSplitter final : public Splitter {
 
 constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
 
-// Autopartition heuristics of the registry (the fallback must make progress, which a fragment's own
-// plane always does); the first is the default. The registry cannot be consulted here, as this runs
-// while it is being built; a test checks that each name is a registered autopartition.
-std::vector<std::string> fallback_names() {
-  return {"balanced", "min-relation", "weighted", "quake", "crystal", "naylor", "first", "random"};
-}
 
 }  // namespace
 
@@ -163,7 +158,7 @@ HeuristicInfo halving_heuristic() {
             0.1, 0.0, 1.0, {}},
            {"fallback", ParamSpec::Kind::Choice,
             "autopartition heuristic (default parameters) for nodes no halving plane separates", 0, 0, 0,
-            fallback_names()}},
+            autopartition_fallbacks("balanced")}},
           false,
           [](const ParamSet& p, std::uint64_t seed) {
             const HalvingSettings s{p.real("angle_tolerance") * kRadiansPerDegree, p.real("balance_slack")};

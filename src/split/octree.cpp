@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "common/rng.h"
+#include "split/fallbacks.h"
 #include "split/registry.h"
 
 namespace bsp {
@@ -115,16 +116,12 @@ class OctreeSplitter final : public Splitter {
   Box box_;
 };
 
-// Autopartition heuristics of the registry, the default first (as halving's fallback; a test checks
-// each is registered). The defaults, first below 64 faces, gave the fastest union of two spheres of
-// 10^4 and 10^5 faces, builds and merge included, of leaf_faces 4 to 512 with first and 4 to 64
-// with crystal (docs/solids.md).
-std::vector<std::string> fallback_names() {
-  return {"first", "balanced", "min-relation", "weighted", "quake", "crystal", "naylor", "random"};
-}
 
 }  // namespace
 
+// The defaults, first below 64 faces, gave the fastest union of two spheres of 10^4 and 10^5 faces,
+// builds and merge included, of leaf_faces 4 to 512 with first and 4 to 64 with crystal
+// (docs/solids.md).
 HeuristicInfo octree_heuristic() {
   return {"octree",
           "spatial front end: axis-aligned planes on a dyadic lattice until a node holds few faces, then the faces' "
@@ -132,7 +129,7 @@ HeuristicInfo octree_heuristic() {
           {{"leaf_faces", ParamSpec::Kind::Integer,
             "a node of more fragments than this takes an axis-aligned plane; fewer go to the fallback", 64, 1, 1e9, {}},
            {"fallback", ParamSpec::Kind::Choice, "autopartition heuristic (default parameters) below leaf_faces", 0, 0,
-            0, fallback_names()}},
+            0, autopartition_fallbacks("first")}},
           false,
           [](const ParamSet& p, std::uint64_t seed) {
             const OctreeSettings s{static_cast<std::size_t>(p.integer("leaf_faces"))};
