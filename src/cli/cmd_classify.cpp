@@ -13,10 +13,10 @@
 #include "cli/run_args.h"
 #include "common/errors.h"
 #include "solid/boundary.h"
-#include "experiments/merge/set_operation.h"
 #include "solid/exact_solid_tree.h"
 #include "solid/solid_build.h"
 #include "split/registry.h"
+#include "validate/exact_solid_check.h"
 
 namespace bsp::cli {
 
@@ -62,7 +62,7 @@ int run(Args& args) {
   answers.reserve(points.size());
   if (*kernel == Kernel::Exact) {
     const auto space = ExactSolidSpace::for_box(box);
-    experiments::require_snapped_solid(scene, space->grid());
+    require_snapped_solid(scene.polygons, space->grid(), scene.name);
     const ExactSolidTree solid = build_exact_solid(scene.polygons, *splitter, *space).solid;
     for (const Vec3& p : points) {
       const auto q = space->grid().snap(p);

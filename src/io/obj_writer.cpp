@@ -106,4 +106,27 @@ std::string to_obj(const IndexedMesh& mesh, std::string_view comment) {
   return out;
 }
 
+std::string to_off(const IndexedMesh& mesh, std::string_view comment) {
+  std::string out = "OFF\n" + comment_lines(comment);
+  append_index(out, mesh.vertices.size());
+  out += ' ';
+  append_index(out, mesh.face_count());
+  out += " 0\n";
+  for (const Vec3& v : mesh.vertices) {
+    append_number(out, v.x);
+    append_number(out, v.y);
+    append_number(out, v.z);
+    out += '\n';
+  }
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    append_index(out, mesh.start[f + 1] - mesh.start[f]);
+    for (std::uint32_t c = mesh.start[f]; c < mesh.start[f + 1]; ++c) {
+      out += ' ';
+      append_index(out, mesh.corners[c]);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
 }  // namespace bsp

@@ -2,6 +2,7 @@
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/corefinement.h>
+#include <CGAL/convex_hull_3.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Surface_mesh.h>
@@ -12,6 +13,7 @@
 #include <array>
 #include <chrono>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -435,6 +437,52 @@ EpeckMesh corefine_one(EpeckMesh x, EpeckMesh y, SetOp op) {
   return out;
 }
 
+// The same for a mesh of convex polygons with double coordinates, each taken exactly.
+EpeckMesh epeck_mesh(std::span<const Polygon> polys) {
+  std::vector<Epeck::Point_3> points;
+  std::vector<std::array<std::size_t, 3>> triangles;
+  std::map<std::array<double, 3>, std::size_t> index;
+  const auto id = [&](const Vec3& p) {
+    const auto [it, fresh] = index.try_emplace({p.x, p.y, p.z}, points.size());
+    if (fresh) points.emplace_back(p.x, p.y, p.z);
+    return it->second;
+  };
+  for (const Polygon& poly : polys)
+    for (std::size_t i = 1; i + 1 < poly.verts.size(); ++i)
+      triangles.push_back({id(poly.verts[0].p), id(poly.verts[i].p), id(poly.verts[i + 1].p)});
+  if (!PMP::is_polygon_soup_a_polygon_mesh(triangles)) throw std::runtime_error("a leaf is not a polygon mesh");
+  EpeckMesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, triangles, mesh);
+  if (!CGAL::is_closed(mesh)) throw std::runtime_error("a leaf is not closed");
+  return mesh;
+}
+
+// One operand of a program: nullopt is the empty solid.
+using ProgramOperand = std::optional<EpeckMesh>;
+
+ProgramOperand combine(ProgramOperand x, ProgramOperand y, StepKind kind) {
+  if (kind == StepKind::Union) {
+    if (!x) return y;
+    if (!y) return x;
+    return corefine_one(std::move(*x), std::move(*y), SetOp::Union);
+  }
+  if (!x || !y) return kind == StepKind::Difference ? x : std::nullopt;
+  return corefine_one(std::move(*x), std::move(*y), kind == StepKind::Intersection ? SetOp::Intersection : SetOp::Difference);
+}
+
+// Fewer than four points off one plane have no 3D hull: the empty solid, as OpenSCAD gives none.
+ProgramOperand hull(std::span<ProgramOperand> operands) {
+  std::vector<Epeck::Point_3> points;
+  for (const ProgramOperand& m : operands)
+    if (m)
+      for (const auto v : m->vertices()) points.push_back(m->point(v));
+  if (points.size() < 4) return std::nullopt;
+  EpeckMesh out;
+  CGAL::convex_hull_3(points.begin(), points.end(), out);
+  if (out.number_of_faces() < 4) return std::nullopt;
+  return out;
+}
+
 // CGAL's exact number type is mpq_class when CGAL uses gmpxx (CGAL_USE_GMPXX), else its Gmpq.
 template <class Exact>
 mpq_class to_mpq(const Exact& e) {
@@ -488,6 +536,48 @@ ExactCorefine exact_corefine(std::span<const std::vector<GridPoint>> a, std::spa
   v.canonicalize();
   out.volume = v.get_str();
   out.volume_double = v.get_d();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps) {
+  const auto start = std::chrono::steady_clock::now();
+  ExactProgramVolume out;
+  std::vector<ProgramOperand> stack;
+  try {
+    for (const Step& step : steps) {
+      if (step.kind == StepKind::Leaf) {
+        stack.emplace_back(epeck_mesh(leaves[step.count]));
+        continue;
+      }
+      if (step.count > stack.size()) throw std::logic_error("exact_corefine_program: a step pops more operands than pushed");
+      const auto first = stack.end() - step.count;
+      ProgramOperand result;
+      if (step.kind == StepKind::Hull) {
+        result = hull(std::span<ProgramOperand>(&*first, step.count));
+        ++out.operations;
+      } else if (step.count > 0) {
+        result = std::move(*first);
+        for (auto it = first + 1; it != stack.end(); ++it) {
+          out.operations += result && *it;
+          result = combine(std::move(result), std::move(*it), step.kind);
+        }
+      }
+      stack.erase(first, stack.end());
+      stack.push_back(std::move(result));
+    }
+    if (stack.size() != 1) throw std::logic_error("exact_corefine_program: the program leaves " + std::to_string(stack.size()) + " operands");
+    mpq_class v = 0;
+    if (stack[0]) {
+      v = to_mpq(CGAL::exact(PMP::volume(*stack[0])));
+      out.triangles = stack[0]->number_of_faces();
+    }
+    v.canonicalize();
+    out.volume = v.get_str();
+    out.volume_double = v.get_d();
+  } catch (const std::runtime_error& e) {
+    out.error = e.what();
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -17,7 +17,9 @@
 
 #include "geometry/grid.h"
 #include "geometry/plane_polygon.h"
+#include "geometry/polygon.h"
 #include "solid/merge.h"
+#include "solid/set_program.h"
 
 namespace bsp {
 
@@ -64,5 +66,27 @@ struct ExactCorefine {
 };
 ExactCorefine exact_corefine(std::span<const std::vector<GridPoint>> a, std::span<const std::vector<GridPoint>> b,
                              SetOp op);
+
+// A program of set operations (solid/set_program.h) evaluated by CGAL's corefinement step by step
+// with exact constructions, each step's result meshed and passed on, as a user of CGAL combines a
+// CSG program: the reference volume of bspbench csg, and the CGAL peer of the csg runs. Leaves are
+// closed outward meshes of convex polygons whose coordinates are doubles taken exactly (grid units
+// for the exact kernel). A hull step is CGAL's convex_hull_3 of its operands' vertices; an empty
+// operand is kept as such (a union ignores it, an intersection becomes empty). CGAL's failure is
+// reported in `error`, not thrown: a peer that fails is a result.
+struct ExactProgramVolume {
+  std::string volume;        // canonical text (cubed units of the leaves' coordinates); empty on error
+  double volume_double = 0;  // the same, truncated toward zero
+  double seconds = 0;        // wall time: leaves meshed, every step, the volume
+  std::uint64_t operations = 0;  // binary corefinements and hulls done
+  std::size_t triangles = 0;     // of the final mesh
+  std::string error;
+};
+ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps);
+
+// The same program with CGAL's Nef polyhedra (exact_nef.cpp), which, unlike corefinement, accept
+// the non-manifold solids a program can make (two parts touching along an edge or at a vertex) as
+// operands of the next step: the reference where corefinement refuses an intermediate result.
+ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps);
 
 }  // namespace bsp

@@ -1,15 +1,23 @@
 // CGAL's Nef polyhedra as a second reference for set operations, in a translation unit of their own:
 // their exact-construction kernel is the slowest CGAL code to compile.
 #include "validate/exact_solid.h"
+#include "validate/exact_measure.h"
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Nef_polyhedron_3.h>
+#include <CGAL/convex_hull_3.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 
+#include <gmpxx.h>
+
 #include <chrono>
+#include <map>
+#include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "validate/cgal_mesh.h"
@@ -23,6 +31,51 @@ using Point = Kernel::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 using Nef = CGAL::Nef_polyhedron_3<Kernel>;
 namespace PMP = CGAL::Polygon_mesh_processing;
+
+// A leaf's convex polygons with their double coordinates taken exactly, vertices shared.
+Nef nef_of(std::span<const Polygon> polys) {
+  std::vector<Point> points;
+  std::vector<std::vector<std::size_t>> faces;
+  std::map<std::array<double, 3>, std::size_t> index;
+  for (const Polygon& poly : polys) {
+    std::vector<std::size_t>& face = faces.emplace_back();
+    for (const Vertex& v : poly.verts) {
+      const auto [it, fresh] = index.try_emplace({v.p.x, v.p.y, v.p.z}, points.size());
+      if (fresh) points.emplace_back(v.p.x, v.p.y, v.p.z);
+      face.push_back(it->second);
+    }
+  }
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, faces, mesh);
+  if (!CGAL::is_closed(mesh)) throw std::runtime_error("a leaf is not closed");
+  return Nef(mesh);
+}
+
+Nef combine(const Nef& x, const Nef& y, StepKind kind) {
+  if (kind == StepKind::Union) return x + y;
+  if (kind == StepKind::Intersection) return x * y;
+  return x - y;
+}
+
+// The hull of the operands' vertices; fewer than four points off one plane: the empty solid.
+Nef hull(std::span<const Nef> operands) {
+  std::vector<Point> points;
+  for (const Nef& n : operands)
+    for (auto v = n.vertices_begin(); v != n.vertices_end(); ++v) points.push_back(v->point());
+  if (points.size() < 4) return Nef();
+  Mesh out;
+  CGAL::convex_hull_3(points.begin(), points.end(), out);
+  if (out.number_of_faces() < 4) return Nef();
+  return Nef(out);
+}
+
+template <class Exact>
+mpq_class to_mpq(const Exact& e) {
+  if constexpr (std::is_same_v<Exact, mpq_class>)
+    return e;
+  else
+    return mpq_class(e.mpq());
+}
 
 }  // namespace
 
@@ -44,6 +97,50 @@ NefResult nef_set_operation(std::span<const Polygon> a, std::span<const Polygon>
   PMP::triangulate_faces(result);
   r.volume = CGAL::to_double(PMP::volume(result));
   return r;
+}
+
+ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps) {
+  const auto start = std::chrono::steady_clock::now();
+  ExactProgramVolume out;
+  std::vector<Nef> stack;
+  try {
+    for (const Step& step : steps) {
+      if (step.kind == StepKind::Leaf) {
+        stack.push_back(nef_of(leaves[step.count]));
+        continue;
+      }
+      if (step.count > stack.size()) throw std::logic_error("exact_nef_program: a step pops more operands than pushed");
+      const auto first = stack.end() - step.count;
+      Nef result;  // empty
+      if (step.kind == StepKind::Hull) {
+        result = hull(std::span<const Nef>(&*first, step.count));
+        ++out.operations;
+      } else if (step.count > 0) {
+        result = *first;
+        for (auto it = first + 1; it != stack.end(); ++it, ++out.operations) result = combine(result, *it, step.kind);
+      }
+      stack.erase(first, stack.end());
+      stack.push_back(std::move(result));
+    }
+    if (stack.size() != 1) throw std::logic_error("exact_nef_program: the program leaves " + std::to_string(stack.size()) + " operands");
+    // As a soup: a non-manifold result has no polygon mesh, but its triangles still bound its
+    // volume (divergence theorem: six times it is the sum of the triangles' determinants).
+    std::vector<Point> points;
+    std::vector<std::vector<std::size_t>> triangles;
+    CGAL::convert_nef_polyhedron_to_polygon_soup(stack[0], points, triangles, true);
+    Kernel::FT six = 0;
+    for (const auto& t : triangles)
+      six += CGAL::determinant(points[t[0]] - CGAL::ORIGIN, points[t[1]] - CGAL::ORIGIN, points[t[2]] - CGAL::ORIGIN);
+    mpq_class v = to_mpq(CGAL::exact(six)) / 6;
+    v.canonicalize();
+    out.volume = v.get_str();
+    out.volume_double = v.get_d();
+    out.triangles = triangles.size();
+  } catch (const std::runtime_error& e) {
+    out.error = e.what();
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
 }
 
 }  // namespace bsp

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/errors.h"
 #include "common/rng.h"
 #include "geometry/snap.h"
 #include "validate/exact_solid.h"
@@ -44,6 +45,14 @@ std::vector<Polygon> grid_unit_polygons(std::span<const Polygon> polys, const Gr
     out.push_back(std::move(p));
   }
   return out;
+}
+
+void require_snapped_solid(std::span<const Polygon> polys, const Grid& grid, const std::string& name) {
+  const std::vector<Polygon> snapped = grid_unit_polygons(polys, grid);
+  require_closed_solid(snapped, 0.0, name + " (snapped to the grid)");
+  if (const std::size_t n = ExactSolid(snapped).self_intersecting_pairs(); n > 0)
+    throw InputError(name + ": not the boundary of a solid after snapping to the grid: " + std::to_string(n) +
+                     " pairs of faces intersect");
 }
 
 ExactSolidCheck check_exact_set_operation(const ExactSolidTree& result, const ExactSolidSpace& space,

@@ -35,6 +35,12 @@ struct ExactSolidCheck {
   bool ok() const { return mismatches == 0 && boundary.closed() && volume_equal(); }
 };
 
+// Throws InputError "NAME: problem" when the polygons, snapped to `grid`, are not a closed solid or
+// their faces intersect: what the exact kernel's solids require beyond the float checks. Snapped, a
+// closed mesh stays closed (equal vertices snap alike) unless a face collapsed; its faces may come
+// to meet, which only exact predicates on the snapped mesh can tell.
+void require_snapped_solid(std::span<const Polygon> polys, const Grid& grid, const std::string& name);
+
 // The operands' snapped polygons in grid units, as CGAL is given them.
 std::vector<Polygon> grid_unit_polygons(std::span<const Polygon> polys, const Grid& grid);
 

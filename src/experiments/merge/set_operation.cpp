@@ -44,16 +44,6 @@ SetOperationRun run_set_operation(const Scene& a, const Scene& b, SetOp op, Spli
   return run;
 }
 
-// Snapped, a closed mesh stays closed (equal vertices snap alike) unless a face collapsed; its faces
-// may come to meet, which only exact predicates on the snapped mesh can tell.
-void require_snapped_solid(const Scene& scene, const Grid& grid) {
-  const std::vector<Polygon> snapped = grid_unit_polygons(scene.polygons, grid);
-  require_closed_solid(snapped, 0.0, scene.name + " (snapped to the grid)");
-  if (const std::size_t n = ExactSolid(snapped).self_intersecting_pairs(); n > 0)
-    throw InputError(scene.name + ": not the boundary of a solid after snapping to the grid: " + std::to_string(n) +
-                     " pairs of faces intersect");
-}
-
 ExactSetOperationRun run_exact_set_operation(const Scene& a, const Scene& b, SetOp op, Splitter& splitter,
                                              const SolidCheckSettings& settings,
                                              const std::function<void(ExactSolidOperands&)>& after_merge) {
@@ -64,8 +54,8 @@ ExactSetOperationRun run_exact_set_operation(const Scene& a, const Scene& b, Set
   require_closed_solid(a.polygons, eps, a.name);
   require_closed_solid(b.polygons, eps, b.name);
   o.space = ExactSolidSpace::for_box(box);
-  require_snapped_solid(a, o.space->grid());
-  require_snapped_solid(b, o.space->grid());
+  require_snapped_solid(a.polygons, o.space->grid(), a.name);
+  require_snapped_solid(b.polygons, o.space->grid(), b.name);
   double start = thread_cpu_seconds();
   o.a = build_exact_solid(a.polygons, splitter, *o.space);
   o.a_cpu_seconds = thread_cpu_seconds() - start;

@@ -56,10 +56,6 @@ struct ExactSetOperationRun {
   ExactSolidCheck check;
 };
 
-// Throws InputError naming the scene when its polygons snapped to `grid` are not a closed solid or
-// their faces intersect: what the exact kernel's solids require beyond the float checks.
-void require_snapped_solid(const Scene& scene, const Grid& grid);
-
 ExactSetOperationRun run_exact_set_operation(const Scene& a, const Scene& b, SetOp op, Splitter& splitter,
                                              const SolidCheckSettings& settings,
                                              const std::function<void(ExactSolidOperands&)>& after_merge = {});
