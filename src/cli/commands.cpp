@@ -20,6 +20,7 @@ const std::vector<Command>& commands() {
       order_command(),
       validate_command(),
       merge_command(),
+      csg_command(),
       classify_command(),
       animate_command(),
       occlude_command(),

@@ -40,6 +40,7 @@ Command report_command();
 Command order_command();
 Command validate_command();
 Command merge_command();
+Command csg_command();
 Command classify_command();
 Command animate_command();
 Command occlude_command();

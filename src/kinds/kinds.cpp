@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "experiments/animate/animate.h"
+#include "experiments/csg/csg.h"
 #include "experiments/doom/doom.h"
 #include "experiments/draw/draw.h"
 #include "experiments/kernel/kernel.h"
@@ -15,6 +16,7 @@ std::span<const experiments::Kind* const> kinds() {
   static const experiments::Kind* const all[] = {
       &experiments::draw_kind(),    &experiments::merge_kind(), &experiments::animate_kind(),
       &experiments::occlude_kind(), &experiments::doom_kind(),  &experiments::kernel_kind(),
+      &experiments::csg_kind(),
   };
   return all;
 }

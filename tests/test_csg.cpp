@@ -1,0 +1,297 @@
+// bspbench csg: OpenSCAD's CSG format parsed, lowered to set programs, evaluated by merging solid
+// trees and proved against CGAL; and every example model OpenSCAD ships, evaluated or refused.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "cli_runner.h"
+#include "common/errors.h"
+#include "csg/lower.h"
+#include "csg/program.h"
+#include "experiments/csg/evaluate.h"
+#include "split/registry.h"
+
+namespace bsp {
+namespace {
+
+using csg::Modifier;
+using csg::Value;
+
+csg::Postfix lowered(const std::string& text) { return csg::lower(csg::parse_program(text, "t.csg")); }
+
+std::string error_of(const std::string& text) {
+  try {
+    lowered(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CsgProgram, ReadsNestedBlocksArgumentsAndModifiers) {
+  const csg::Program p = csg::parse_program(
+      "group() {\n  multmatrix([[1, 0, 0, 2], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+      "    %cube(size = [1, 2, 3], center = true);\n    #sphere($fn = 8, r = 1e-1);\n  }\n}\n"
+      "/* a comment */ polyhedron(points = [], faces = [], convexity = 1); // another\n"
+      "import(file = \"a \\\"b\\\".stl\", layer = \"\", origin = [0, 0], scale = 1, t = undef, u = -inf);\n",
+      "t.csg");
+  ASSERT_EQ(p.roots.size(), 3u);
+  const csg::Node& mm = p.nodes[p.nodes[p.roots[0]].children[0]];
+  EXPECT_EQ(mm.name, "multmatrix");
+  EXPECT_EQ(mm.line, 2u);
+  ASSERT_EQ(mm.children.size(), 2u);
+  const csg::Node& cube = p.nodes[mm.children[0]];
+  EXPECT_EQ(cube.modifier, Modifier::Background);
+  EXPECT_EQ(cube.line, 3u);
+  ASSERT_EQ(cube.arg("size")->items.size(), 3u);
+  EXPECT_EQ(cube.arg("size")->items[2].number, 3);
+  EXPECT_TRUE(cube.arg("center")->boolean);
+  const csg::Node& sphere = p.nodes[mm.children[1]];
+  EXPECT_EQ(sphere.modifier, Modifier::Highlight);
+  EXPECT_DOUBLE_EQ(sphere.arg("r")->number, 0.1);
+  EXPECT_EQ(sphere.arg("$fn")->number, 8);
+  const csg::Node& import = p.nodes[p.roots[2]];
+  EXPECT_EQ(import.line, 8u);
+  EXPECT_EQ(import.arg("file")->text, "a \"b\".stl");
+  EXPECT_EQ(import.arg("t")->type, Value::Type::Undef);
+  EXPECT_TRUE(std::isinf(import.arg("u")->number));
+}
+
+TEST(CsgProgram, MalformedTextNamesTheFileAndLine) {
+  const auto message = [](const std::string& text) {
+    try {
+      csg::parse_program(text, "bad.csg");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("cube(size = [1, 2);"), "bad.csg:1: expected ']' to close a vector, found ')'");
+  EXPECT_EQ(message("group() {\n cube();\n"), "bad.csg:3: 'group' block not closed");
+  EXPECT_EQ(message("cube(size = 1)\nsphere();"), "bad.csg:2: expected ';' or '{' after 'cube(...)', found 's'");
+  EXPECT_EQ(message("}"), "bad.csg:1: '}' closes no block");
+  EXPECT_EQ(message("cube(size = 1 + 2);"), "bad.csg:1: expected ')' to close the arguments of 'cube', found '+'");
+  EXPECT_EQ(message("cube(size = x);"), "bad.csg:1: expected a literal value, found 'x' (the CSG format holds no expressions)");
+  EXPECT_EQ(message("cube(size = 1.2.3);"), "bad.csg:1: malformed number '1.2.3'");
+  std::string deep = "cube(size = ";
+  for (int i = 0; i <= csg::kMaxValueDepth; ++i) deep += "[";
+  EXPECT_EQ(message(deep), "bad.csg:1: vectors nested deeper than 64");
+}
+
+// A union that nests as deep as the input must not recurse: 100000 levels of group().
+TEST(CsgProgram, DeepNestingNeedsNoCallStack) {
+  std::string text;
+  constexpr int kDepth = 100000;
+  for (int i = 0; i < kDepth; ++i) text += "group() {\n";
+  text += "cube(size = 1);\n";
+  for (int i = 0; i < kDepth; ++i) text += "}\n";
+  const csg::Postfix p = lowered(text);
+  ASSERT_EQ(p.leaves.size(), 1u);
+  EXPECT_EQ(p.steps.size(), 1u);  // a union of one operand is that operand
+}
+
+TEST(CsgLower, TransformsReachTheLeavesAndMirroringKeepsFacesOutward) {
+  const csg::Postfix p = lowered(
+      "multmatrix([[-1, 0, 0, 5], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) { cube(size = [1, 2, 3]); }");
+  ASSERT_EQ(p.leaves.size(), 1u);
+  Box box;
+  double volume = 0;
+  for (const Polygon& poly : p.leaves[0].polygons) {
+    for (const Vertex& v : poly.verts) box.add(v.p);
+    for (std::size_t i = 1; i + 1 < poly.verts.size(); ++i)
+      volume += dot(poly.verts[0].p, cross(poly.verts[i].p, poly.verts[i + 1].p)) / 6;
+  }
+  EXPECT_EQ(box.lo.x, 4);
+  EXPECT_EQ(box.hi.x, 5);
+  EXPECT_EQ(box.hi.z, 3);
+  EXPECT_NEAR(volume, 6, 1e-12);  // outward: positive
+  EXPECT_EQ(p.stats.flipped_leaves, 0u);
+}
+
+TEST(CsgLower, OpenScadSemanticsOfEmptyHiddenAndWrongDimensionChildren) {
+  // A difference whose first child is empty is empty; '%' and '*' are not rendered; a 2D child of
+  // a 3D union is ignored and counted.
+  const csg::Postfix p = lowered(
+      "difference() { group() { } cube(size = 1); }\n%cube(size = 2);\n*cube(size = 3);\n"
+      "union() { square(size = [1, 1]); sphere(r = 1); }\n");
+  EXPECT_EQ(p.stats.not_rendered, 2u);
+  EXPECT_EQ(p.stats.ignored_wrong_dimension, 1u);  // the union is 2D, as its first child is
+  std::vector<StepKind> kinds;
+  for (const Step& s : p.steps) kinds.push_back(s.kind);
+  EXPECT_EQ(kinds, (std::vector<StepKind>{StepKind::Empty, StepKind::Leaf, StepKind::Difference}));
+  EXPECT_EQ(error_of("square(size = 1);\ncube(size = 1);"),
+            "t.csg: the program has no 3D object (its first top-level object is 2D): bspbench csg evaluates 3D programs");
+}
+
+TEST(CsgLower, RefusedNodesNameTheFileLineAndNode) {
+  EXPECT_EQ(error_of("linear_extrude(height = 1) {\n  text(text = \"a\", size = 10);\n}"),
+            "t.csg:2: text: not supported by bspbench csg (only set operations, transforms, extrusions and hulls of polyhedra)");
+  EXPECT_EQ(error_of("linear_extrude(height = 1) {\n offset(r = 1) { square(size = 1); }\n}").substr(0, 14), "t.csg:2: offse");
+  EXPECT_EQ(error_of("minkowski() { cube(size = 1); sphere(r = 1); }").substr(0, 19), "t.csg:1: minkowski:");
+  EXPECT_EQ(error_of("linear_extrude(height = 1) { import(file = \"a.dxf\"); }"),
+            "t.csg:1: import: import of 2D formats (.dxf) is not supported by bspbench csg");
+  EXPECT_EQ(error_of("linear_extrude(height = 1) { import(file = \"a.svg\"); }"),
+            "t.csg:1: import: import of 2D formats (.svg) is not supported by bspbench csg");
+  EXPECT_EQ(error_of("cube(size = 1);\nimport(file = \"missing.stl\");"), "t.csg:2: import: missing.stl: no such file");
+  EXPECT_EQ(error_of("frobnicate();"), "t.csg:1: frobnicate: unknown node");
+  EXPECT_EQ(error_of("cube(size = [1, 2]);"), "t.csg:1: cube: argument 'size' must be a vector of 3 numbers");
+  EXPECT_EQ(error_of("sphere(r = nan);"), "t.csg:1: sphere: argument 'r' must be a finite number");
+  EXPECT_EQ(error_of("polyhedron(points = [[0, 0, 0]], faces = [[0, 1, 2]]);"),
+            "t.csg:1: polyhedron: a face refers to a point that does not exist (there are 1)");
+  // Refused nodes that are not rendered are not refused.
+  EXPECT_EQ(error_of("%text(text = \"a\");\ncube(size = 1);"), "");
+}
+
+// A program evaluated by merges against volumes known in closed form, in both kernels.
+TEST(CsgEvaluate, ProgramsOfBoxesHaveTheirClosedFormVolumes) {
+  const std::string text =
+      "difference() {\n  cube(size = [4, 4, 4]);\n  cube(size = [1, 1, 1]);\n"
+      "  multmatrix([[1, 0, 0, 3], [0, 1, 0, 3], [0, 0, 1, 3], [0, 0, 0, 1]]) { cube(size = [2, 2, 2]); }\n}\n"
+      "multmatrix([[1, 0, 0, 10], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) {\n"
+      "  intersection() { cube(size = [2, 2, 2]); multmatrix([[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1], [0, 0, 0, 1]]) { cube(size = [2, 2, 2]); } }\n}\n";
+  const csg::Program program = csg::parse_program(text, "boxes.csg");
+  const csg::Postfix postfix = csg::lower(program);
+  for (const Kernel kernel : {Kernel::Exact, Kernel::Float}) {
+    for (const char* heuristic : {"first", "octree"}) {
+      SCOPED_TRACE(std::string(kernel_name(kernel)) + " " + heuristic);
+      const auto splitter = make_splitter(heuristic, {}, 1);
+      experiments::CsgSettings settings;
+      settings.kernel = kernel;
+      settings.check.points = 2000;
+      const experiments::CsgEvaluation e = experiments::evaluate_program(program, postfix, *splitter, settings);
+      EXPECT_NEAR(e.check.volume, 64 - 1 - 1 + 1, 1e-9);
+      EXPECT_TRUE(e.check.ok()) << to_json(e.check).dump();
+      EXPECT_EQ(e.check.mismatches, 0u);
+      EXPECT_GT(e.check.compared, 1000u);
+      EXPECT_EQ(e.steps.size(), 3u);  // the difference, the intersection, the top-level union
+      EXPECT_EQ(e.leaves.size(), 5u);
+    }
+  }
+}
+
+// The proof must catch a wrong program: evaluating a union where the program says difference.
+TEST(CsgEvaluate, PlantedWrongOperationIsCaughtByTheProof) {
+  const csg::Program program = csg::parse_program(
+      "difference() { cube(size = [4, 4, 4]); sphere($fn = 12, r = 2); }", "planted.csg");
+  csg::Postfix postfix = csg::lower(program);
+  const csg::Postfix good = postfix;
+  for (Step& s : postfix.steps)
+    if (s.kind == StepKind::Difference) s.kind = StepKind::Union;
+  for (const Kernel kernel : {Kernel::Exact, Kernel::Float}) {
+    SCOPED_TRACE(kernel_name(kernel));
+    const auto splitter = make_splitter("octree", {}, 1);
+    experiments::CsgSettings settings;
+    settings.kernel = kernel;
+    settings.check.points = 2000;
+    const experiments::CsgEvaluation right = experiments::evaluate_program(program, good, *splitter, settings);
+    EXPECT_TRUE(right.check.ok()) << to_json(right.check).dump();
+    settings.truth = &good;  // the planted program's result proved against the true program
+    const experiments::CsgEvaluation planted = experiments::evaluate_program(program, postfix, *splitter, settings);
+    EXPECT_FALSE(planted.check.ok());
+    EXPECT_GT(planted.check.mismatches, 100u);
+    EXPECT_FALSE(planted.check.volume_ok());
+  }
+}
+
+// The examples OpenSCAD 2021.01 ships (Debian's openscad, /usr/share/openscad/examples), each
+// exported to CSG by OpenSCAD itself: the 3D models without refused nodes evaluate and prove; every
+// other one is refused with one line naming the node that bspbench does not evaluate, or saying the
+// model is 2D. One test per model, so ctest spreads them over its workers.
+const std::filesystem::path kExamples = "/usr/share/openscad/examples";
+
+const std::vector<std::string> kEvaluated = {
+    "CSG-modules", "CSG",        "animation",  "assert",     "candleStand", "echo",       "example001",
+    "example002",  "example003", "example004", "example005", "example006",  "example011", "example012",
+    "example014",  "example016", "example017", "example018", "example019",  "example020", "example022",
+    "example023",  "example024", "functions",  "linear_extrude", "logo"};
+// The refused ones with what their one line names: the first refused node, or the 2D model.
+const std::map<std::string, std::string> kRefused = {
+    {"GEB", "offset"},          {"LetterBlock", "text"},      {"children", "text"},
+    {"children_indexed", "text"}, {"example007", "import of 2D formats (.dxf)"},
+    {"example008", "import of 2D formats (.dxf)"}, {"example009", "import of 2D formats (.dxf)"},
+    {"example010", "surface"},  {"example013", "import of 2D formats (.dxf)"}, {"example015", "no 3D object"},
+    {"example021", "projection"}, {"logo_and_text", "text"}, {"offset", "offset"},
+    {"polygon_areas", "no 3D object"}, {"projection", "projection"}, {"recursion", "no 3D object"},
+    {"rotate_extrude", "text"}, {"sign", "text"},         {"surface_image", "projection"},
+    {"text_on_cube", "text"},   {"module_recursion", "no 3D object"}, {"list_comprehensions", "no 3D object"}};
+
+bool have_openscad() {
+  return std::filesystem::exists(kExamples) && std::system("openscad --version > /dev/null 2>&1") == 0;
+}
+
+std::vector<std::string> all_example_names() {
+  std::vector<std::string> out = kEvaluated;
+  for (const auto& [name, reason] : kRefused) out.push_back(name);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(CsgExamples, TheListsNameEveryModelOpenScadShips) {
+  if (!have_openscad()) GTEST_SKIP() << "Debian's openscad is not installed (.ci/setup installs it)";
+  std::vector<std::string> shipped;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(kExamples))
+    if (entry.path().extension() == ".scad") shipped.push_back(entry.path().stem().string());
+  std::sort(shipped.begin(), shipped.end());
+  EXPECT_EQ(shipped, all_example_names());
+  EXPECT_EQ(kEvaluated.size(), 26u);
+}
+
+class CsgExample : public ::testing::TestWithParam<std::string> {};
+
+// The example's folder copied (imports are relative to it), the model exported by openscad.
+std::filesystem::path exported(const std::string& name, const std::filesystem::path& dir) {
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(kExamples)) {
+    if (entry.path().stem() != name || entry.path().extension() != ".scad") continue;
+    std::filesystem::copy(entry.path().parent_path(), dir, std::filesystem::copy_options::recursive);
+    const auto scad = dir / entry.path().filename(), csg_file = dir / (name + ".csg");
+    const std::string cmd = "cd '" + dir.string() + "' && openscad -o '" + csg_file.string() + "' '" + scad.string() +
+                            "' > /dev/null 2>&1";
+    if (std::system(cmd.c_str()) != 0) return {};
+    return csg_file;
+  }
+  return {};
+}
+
+TEST_P(CsgExample, EvaluatesAndProvesOrIsRefusedWithItsReason) {
+  if (!have_openscad()) GTEST_SKIP() << "Debian's openscad is not installed (.ci/setup installs it)";
+  const std::string name = GetParam();
+  const auto dir = testing::fresh_test_dir("csg_example");
+  const auto csg_file = exported(name, dir / "model");
+  ASSERT_FALSE(csg_file.empty()) << "openscad could not export " << name;
+  const testing::CliResult r = testing::run_bspbench("csg '" + csg_file.string() + "' --points 500 --json", dir);
+  if (kRefused.count(name) == 0) {
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json check = nlohmann::json::parse(r.out)["check"];
+    EXPECT_TRUE(check["ok"].get<bool>()) << "mismatches " << check["mismatches"] << ", border edges " << check["border_edges"]
+                                          << ", volume " << check["volume"] << " against " << check["corefine_volume"]
+                                          << " (" << check["reference"] << ") " << check["corefine_error"];
+    EXPECT_EQ(check["mismatches"], 0);
+    EXPECT_EQ(check["border_edges"], 0);
+    // A program of nothing (echo; example023, whose polygons OpenSCAD exports without points) has no
+    // leaf to draw points near; every other one is compared.
+    if (name != "echo" && name != "example023") EXPECT_GT(check["compared"].get<int>(), 0);
+  } else {
+    EXPECT_EQ(r.code, 2) << r.out.substr(0, 200);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(csg_file.string()), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(kRefused.at(name)), std::string::npos) << r.err;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// Test names allow letters, digits and '_' only.
+std::string example_test_name(const ::testing::TestParamInfo<std::string>& info) {
+  std::string out = info.param;
+  std::replace(out.begin(), out.end(), '-', '_');
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(OpenScad, CsgExample, ::testing::ValuesIn(all_example_names()), example_test_name);
+
+}  // namespace
+}  // namespace bsp
