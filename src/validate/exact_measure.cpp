@@ -540,7 +540,40 @@ ExactCorefine exact_corefine(std::span<const std::vector<GridPoint>> a, std::spa
   return out;
 }
 
-ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps) {
+namespace {
+
+// Left to right, or as a balanced tree (exact_measure.h); `operations` counts the binary ones done.
+ProgramOperand fold(std::vector<ProgramOperand> ops, StepKind kind, Order order, std::uint64_t& operations) {
+  if (ops.empty()) return std::nullopt;
+  if (order == Order::Balanced && kind == StepKind::Difference && ops.size() > 2) {
+    std::vector<ProgramOperand> rest(std::make_move_iterator(ops.begin() + 1), std::make_move_iterator(ops.end()));
+    ProgramOperand cut = fold(std::move(rest), StepKind::Union, order, operations);
+    operations += ops[0] && cut;
+    return combine(std::move(ops[0]), std::move(cut), kind);
+  }
+  if (order == Order::Balanced && kind != StepKind::Difference) {
+    while (ops.size() > 1) {
+      std::vector<ProgramOperand> next;
+      for (std::size_t i = 0; i + 1 < ops.size(); i += 2) {
+        operations += ops[i] && ops[i + 1];
+        next.push_back(combine(std::move(ops[i]), std::move(ops[i + 1]), kind));
+      }
+      if (ops.size() % 2 == 1) next.push_back(std::move(ops.back()));
+      ops = std::move(next);
+    }
+    return std::move(ops[0]);
+  }
+  ProgramOperand result = std::move(ops[0]);
+  for (std::size_t i = 1; i < ops.size(); ++i) {
+    operations += result && ops[i];
+    result = combine(std::move(result), std::move(ops[i]), kind);
+  }
+  return result;
+}
+
+}  // namespace
+
+ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, Order order) {
   const auto start = std::chrono::steady_clock::now();
   ExactProgramVolume out;
   std::vector<ProgramOperand> stack;
@@ -556,12 +589,9 @@ ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> 
       if (step.kind == StepKind::Hull) {
         result = hull(std::span<ProgramOperand>(&*first, step.count));
         ++out.operations;
-      } else if (step.count > 0) {
-        result = std::move(*first);
-        for (auto it = first + 1; it != stack.end(); ++it) {
-          out.operations += result && *it;
-          result = combine(std::move(result), std::move(*it), step.kind);
-        }
+      } else {
+        result = fold(std::vector<ProgramOperand>(std::make_move_iterator(first), std::make_move_iterator(stack.end())),
+                      step.kind, order, out.operations);
       }
       stack.erase(first, stack.end());
       stack.push_back(std::move(result));

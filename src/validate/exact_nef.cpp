@@ -69,6 +69,27 @@ Nef hull(std::span<const Nef> operands) {
   return Nef(out);
 }
 
+Nef fold(std::vector<Nef> ops, StepKind kind, Order order, std::uint64_t& operations) {
+  if (ops.empty()) return Nef();
+  if (order == Order::Balanced && kind == StepKind::Difference && ops.size() > 2) {
+    Nef cut = fold(std::vector<Nef>(ops.begin() + 1, ops.end()), StepKind::Union, order, operations);
+    ++operations;
+    return ops[0] - cut;
+  }
+  if (order == Order::Balanced && kind != StepKind::Difference) {
+    while (ops.size() > 1) {
+      std::vector<Nef> next;
+      for (std::size_t i = 0; i + 1 < ops.size(); i += 2, ++operations) next.push_back(combine(ops[i], ops[i + 1], kind));
+      if (ops.size() % 2 == 1) next.push_back(ops.back());
+      ops = std::move(next);
+    }
+    return ops[0];
+  }
+  Nef result = ops[0];
+  for (std::size_t i = 1; i < ops.size(); ++i, ++operations) result = combine(result, ops[i], kind);
+  return result;
+}
+
 template <class Exact>
 mpq_class to_mpq(const Exact& e) {
   if constexpr (std::is_same_v<Exact, mpq_class>)
@@ -99,7 +120,7 @@ NefResult nef_set_operation(std::span<const Polygon> a, std::span<const Polygon>
   return r;
 }
 
-ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps) {
+ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, Order order) {
   const auto start = std::chrono::steady_clock::now();
   ExactProgramVolume out;
   std::vector<Nef> stack;
@@ -115,9 +136,8 @@ ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leave
       if (step.kind == StepKind::Hull) {
         result = hull(std::span<const Nef>(&*first, step.count));
         ++out.operations;
-      } else if (step.count > 0) {
-        result = *first;
-        for (auto it = first + 1; it != stack.end(); ++it, ++out.operations) result = combine(result, *it, step.kind);
+      } else {
+        result = fold(std::vector<Nef>(first, stack.end()), step.kind, order, out.operations);
       }
       stack.erase(first, stack.end());
       stack.push_back(std::move(result));

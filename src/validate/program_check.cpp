@@ -119,14 +119,15 @@ void sample(ProgramCheck& c, std::span<const std::vector<Polygon>> leaves, const
   }
 }
 
-// CGAL's corefinement step by step; where it refuses (an intermediate result is not a manifold
+// CGAL's corefinement, each step's operands combined as a balanced tree (the same solid, without
+// the quadratic cost of re-cutting a growing result once per operand); where it refuses (an intermediate result is not a manifold
 // mesh: parts touching along an edge), Nef polyhedra, which take any solid.
 void corefine_volume(ProgramCheck& c, std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, double unit) {
-  ExactProgramVolume r = exact_corefine_program(leaves, steps);
+  ExactProgramVolume r = exact_corefine_program(leaves, steps, Order::Balanced);
   c.reference = "corefine";
   if (!r.error.empty()) {
     c.corefine_refused = r.error;
-    r = exact_nef_program(leaves, steps);
+    r = exact_nef_program(leaves, steps, Order::Balanced);
     c.reference = "nef";
   }
   c.corefine_error = r.error;

@@ -2,8 +2,8 @@
 // Proof of an evaluated program of set operations (solid/set_program.h), as solid_check.h proves
 // one operation: points classified by the result tree against the truth the program itself gives
 // (CGAL's exact side-of-mesh on every leaf, combined step by step), the result's volume against
-// CGAL's corefinement of the same leaves step by step with exact constructions
-// (exact_corefine_program), and the boundary closed. A hull step's truth is the side of the hull
+// CGAL's corefinement of the same leaves with exact constructions (exact_corefine_program, each
+// step's operands combined as a balanced tree), and the boundary closed. A hull step's truth is the side of the hull
 // mesh the evaluation built (`hulls`, one per hull step in order); CGAL's volume computes its own
 // hull, so a wrong hull still fails the volume. Where corefinement refuses an intermediate result
 // (not a manifold mesh), the reference volume is CGAL's Nef polyhedra's (exact_nef_program).
