@@ -198,6 +198,71 @@ TEST(CsgEvaluate, PlantedWrongOperationIsCaughtByTheProof) {
   }
 }
 
+// The csg kind in a sweep: ours proved, CGAL's step-by-step volume equal to ours, the run's command
+// repeating its merge cost, and a peer past its timeout recorded as timed out, not failed.
+TEST(CsgSweep, RunsProveMatchTheirPeersAndRecordATimedOutPeer) {
+  const auto dir = testing::fresh_test_dir("csg_sweep");
+  std::ofstream(dir / "csg.json") << R"({"name": "csg-test", "csg": [
+      {"programs": ["drilled-plate:k=4", "sphere-union:k=3"], "engines": ["bspbench", "cgal", "manifold"],
+       "heuristics": ["octree", "first"], "kernels": ["exact", "float"], "points": 500},
+      {"programs": ["drilled-plate:k=150"], "engines": ["cgal"], "peer_timeout": 0.05}]})";
+  const testing::CliResult r = testing::run_bspbench(
+      "sweep --suite '" + (dir / "csg.json").string() + "' --out '" + (dir / "r.json").string() + "' --journal-dir '" +
+          (dir / "j").string() + "' --threads 1",
+      dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto report = nlohmann::json::parse(testing::slurp(dir / "r.json"));
+  EXPECT_TRUE(report["failures"].empty()) << report["failures"].dump();
+  std::map<std::string, double> cgal_volume;
+  std::size_t ours = 0, timed_out = 0;
+  for (const auto& run : report["runs"]) {
+    const auto& id = run["id"];
+    if (id["engine"] == "cgal" && run["validation"]["status"] == "ok") cgal_volume[id["program"]] = run["metrics"]["volume"];
+    if (id["engine"] == "cgal" && id["program"] == "drilled-plate:k=150") {
+      EXPECT_EQ(run["validation"]["status"], "timeout");
+      ++timed_out;
+    }
+    if (id["engine"] == "manifold") EXPECT_TRUE(run["validation"]["status"] == "ok" || run["validation"]["status"] == "missing");
+  }
+  for (const auto& run : report["runs"]) {
+    const auto& id = run["id"];
+    if (id["engine"] != "bspbench") continue;
+    ++ours;
+    SCOPED_TRACE(id["command"].get<std::string>());
+    EXPECT_EQ(run["validation"]["violations"], 0);
+    EXPECT_EQ(run["invariants"]["violations"], 0);
+    EXPECT_NEAR(run["metrics"]["volume"].get<double>(), cgal_volume.at(id["program"]), 1e-9 * cgal_volume.at(id["program"]));
+    if (id["kernel"] != "exact" || id["heuristic"] != "octree") continue;
+    const std::string command = id["command"];
+    const testing::CliResult again = testing::run_bspbench(command.substr(9) + " --json", dir);
+    ASSERT_EQ(again.code, 0) << again.err;
+    const auto out = nlohmann::json::parse(again.out);
+    EXPECT_EQ(out["result"]["nodes"], run["metrics"]["result_nodes"]);
+    EXPECT_EQ(out["check"]["volume"], run["metrics"]["volume"]);
+  }
+  EXPECT_EQ(ours, 8u);  // 2 programs x 2 heuristics x 2 kernels
+  EXPECT_EQ(timed_out, 1u);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CsgSweep, BadBlocksAreOneLineErrors) {
+  const auto dir = testing::fresh_test_dir("csg_bad");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"({"programs": ["drilled-plate"]})", "needs its size: drilled-plate:k=K"},
+      {R"({"programs": ["cube-union:k=3"]})", "unknown csg program 'cube-union'"},
+      {R"({"programs": ["drilled-plate:k=3"], "engines": ["blender"]})", "unknown engine 'blender'"},
+      {R"({"programs": ["drilled-plate:k=3"], "peer_timeout": 0})", "peer_timeout"},
+      {R"({"programs": []})", "name at least one program"}};
+  for (const auto& [block, message] : cases) {
+    std::ofstream(dir / "s.json") << R"({"name": "bad", "csg": [)" + block + "]}";
+    const testing::CliResult r = testing::run_bspbench("sweep --suite '" + (dir / "s.json").string() + "' --out '" + (dir / "r.json").string() + "'", dir);
+    EXPECT_EQ(r.code, 2) << block;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // The examples OpenSCAD 2021.01 ships (Debian's openscad, /usr/share/openscad/examples), each
 // exported to CSG by OpenSCAD itself: the 3D models without refused nodes evaluate and prove; every
 // other one is refused with one line naming the node that bspbench does not evaluate, or saying the
