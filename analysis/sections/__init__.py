@@ -1,7 +1,7 @@
 """The report's sections, one module each, in page order. Each exposes render(report, ctx) -> Section
 or None (sections/common.py); adding a section is a module and a line here.
 """
-from sections import (animate, changes, cost_model, doom, draw, glossary, kernel, merge, occlude, segments,
+from sections import (animate, changes, cost_model, csg, doom, draw, glossary, kernel, merge, occlude, segments,
                       theory, verdicts)
 
 SECTIONS = (
@@ -12,6 +12,7 @@ SECTIONS = (
     glossary.render,    # what the metrics mean
     draw.render,        # one section per drawing scene
     merge.render,       # set operations
+    csg.render,         # CSG programs beside the peer engines
     animate.render,     # dynamic scenes
     occlude.render,     # occlusion culling
     segments.render,    # 2D segments against the Paterson–Yao bound

@@ -13,7 +13,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 import stats  # noqa: E402
 import tables  # noqa: E402
-from sections import cost_model, draw, kernel, theory, verdicts  # noqa: E402
+from sections import cost_model, csg, draw, kernel, theory, verdicts  # noqa: E402
 
 
 def draw_run(scene, heuristic, n, seed, metrics, shape="strict", timings=None):
@@ -206,6 +206,45 @@ class ExactDrawings(unittest.TestCase):
         row = kernel.drawing_table(pairs).rows[0]
         self.assertEqual(row[-1], 0.9)
         self.assertEqual(kernel.drawing_part({"runs": []}), ("", []))
+
+
+def csg_run(program, engine, seconds, volume, status="ok", kernel="exact", violations=0):
+    ours = engine == "bspbench"
+    run = {"id": {"kind": "csg", "program": program, "engine": engine, "seed": 1,
+                  "heuristic": "octree" if ours else "peer:" + engine, "kernel": kernel if ours else "none"},
+           "metrics": {"volume": volume, "merges": 4, "result_faces" if ours else "result_triangles": 100},
+           "invariants": {"violations": 0},
+           "timings": {"seconds": seconds} if ours else {"peer_seconds": seconds}}
+    run["validation"] = ({"violations": violations, "volume_ok": violations == 0, "reference_volume": 10.0}
+                         if ours else {"status": status, "note": "killed after 60 s" if status == "timeout" else ""})
+    return run
+
+
+class Csg(unittest.TestCase):
+    """Every engine of a program is a row; a peer that did not finish shows its status, never a time ratio."""
+    def report(self):
+        return {"runs": [csg_run("p", "bspbench", 0.5, 10.0), csg_run("p", "cgal", 2.0, 10.0),
+                         csg_run("p", "manifold", 0.25, 10.0 + 1e-8), csg_run("p", "openscad", 60.0, 0.0, "timeout")],
+                "aggregates": []}
+
+    def test_who_wins_and_the_ratios_to_each_peer(self):
+        programs = csg.by_program(csg.csg_runs(self.report()))
+        [row] = csg.winners({p: {1: s[1]} for p, s in programs.items()})
+        self.assertEqual(row[1], "manifold")
+        self.assertEqual(row[3], 0.25)  # bspbench / cgal
+        self.assertEqual(row[4].text, "timeout")  # openscad: its status, not a ratio
+        self.assertEqual(row[5], 2.0)  # bspbench / manifold
+
+    def test_rows_compare_volumes_with_cgal_and_flag_our_violations(self):
+        report = self.report()
+        rows = csg.program_rows("p", csg.csg_runs(report))
+        by_engine = {r[1]: r for r in rows}
+        self.assertAlmostEqual(by_engine["manifold"][7], 1e-9)
+        self.assertIsNone(by_engine["openscad"][7])  # no volume from a peer that timed out
+        self.assertEqual(by_engine["octree (exact)"][4], 0.5 / 4)  # per binary operation
+        report["runs"][0]["validation"]["violations"] = 1
+        rows = csg.program_rows("p", csg.csg_runs(report))
+        self.assertEqual({r[1]: r[2].value for r in rows}["octree (exact)"], "VIOLATION")
 
 
 class Exports(unittest.TestCase):
