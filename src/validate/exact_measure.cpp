@@ -21,6 +21,8 @@
 #include <utility>
 #include <vector>
 
+#include "validate/cgal_mesh.h"
+
 namespace bsp {
 
 namespace {
@@ -437,22 +439,9 @@ EpeckMesh corefine_one(EpeckMesh x, EpeckMesh y, SetOp op) {
   return out;
 }
 
-// The same for a mesh of convex polygons with double coordinates, each taken exactly.
+// A leaf of convex polygons with double coordinates, each taken exactly (cgal_mesh.h).
 EpeckMesh epeck_mesh(std::span<const Polygon> polys) {
-  std::vector<Epeck::Point_3> points;
-  std::vector<std::array<std::size_t, 3>> triangles;
-  std::map<std::array<double, 3>, std::size_t> index;
-  const auto id = [&](const Vec3& p) {
-    const auto [it, fresh] = index.try_emplace({p.x, p.y, p.z}, points.size());
-    if (fresh) points.emplace_back(p.x, p.y, p.z);
-    return it->second;
-  };
-  for (const Polygon& poly : polys)
-    for (std::size_t i = 1; i + 1 < poly.verts.size(); ++i)
-      triangles.push_back({id(poly.verts[0].p), id(poly.verts[i].p), id(poly.verts[i + 1].p)});
-  if (!PMP::is_polygon_soup_a_polygon_mesh(triangles)) throw std::runtime_error("a leaf is not a polygon mesh");
-  EpeckMesh mesh;
-  PMP::polygon_soup_to_polygon_mesh(points, triangles, mesh);
+  EpeckMesh mesh = cgal_mesh_of<Epeck::Point_3>(polys);
   if (!CGAL::is_closed(mesh)) throw std::runtime_error("a leaf is not closed");
   return mesh;
 }
@@ -483,14 +472,6 @@ ProgramOperand hull(std::span<ProgramOperand> operands) {
   return out;
 }
 
-// CGAL's exact number type is mpq_class when CGAL uses gmpxx (CGAL_USE_GMPXX), else its Gmpq.
-template <class Exact>
-mpq_class to_mpq(const Exact& e) {
-  if constexpr (std::is_same_v<Exact, mpq_class>)
-    return e;
-  else
-    return mpq_class(e.mpq());
-}
 
 }  // namespace
 

@@ -12,12 +12,8 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/convert_nef_polyhedron_to_polygon_mesh.h>
 
-#include <gmpxx.h>
-
 #include <chrono>
-#include <map>
 #include <stdexcept>
-#include <type_traits>
 #include <vector>
 
 #include "validate/cgal_mesh.h"
@@ -34,19 +30,7 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 
 // A leaf's convex polygons with their double coordinates taken exactly, vertices shared.
 Nef nef_of(std::span<const Polygon> polys) {
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> faces;
-  std::map<std::array<double, 3>, std::size_t> index;
-  for (const Polygon& poly : polys) {
-    std::vector<std::size_t>& face = faces.emplace_back();
-    for (const Vertex& v : poly.verts) {
-      const auto [it, fresh] = index.try_emplace({v.p.x, v.p.y, v.p.z}, points.size());
-      if (fresh) points.emplace_back(v.p.x, v.p.y, v.p.z);
-      face.push_back(it->second);
-    }
-  }
-  Mesh mesh;
-  PMP::polygon_soup_to_polygon_mesh(points, faces, mesh);
+  const Mesh mesh = cgal_mesh_of<Point>(polys);
   if (!CGAL::is_closed(mesh)) throw std::runtime_error("a leaf is not closed");
   return Nef(mesh);
 }
@@ -90,13 +74,6 @@ Nef fold(std::vector<Nef> ops, StepKind kind, Order order, std::uint64_t& operat
   return result;
 }
 
-template <class Exact>
-mpq_class to_mpq(const Exact& e) {
-  if constexpr (std::is_same_v<Exact, mpq_class>)
-    return e;
-  else
-    return mpq_class(e.mpq());
-}
 
 }  // namespace
 

@@ -23,16 +23,9 @@ std::vector<std::vector<GridPoint>> snapped_corners(std::span<const Polygon> pol
   return snap_polygons(polys, grid).corners;
 }
 
-// A grid point near a random face: uniform in the face's fan triangle, pushed off it by up to
-// `reach` grid units, rounded to the grid.
+// A grid point near a random face: near_surface_point rounded to the grid.
 GridPoint near_surface(std::span<const Polygon> faces, Rng& rng, double reach) {
-  const Polygon& p = faces[rng.below(faces.size())];
-  const std::size_t k = 1 + rng.below(p.verts.size() - 2);
-  double u = rng.uniform(), v = rng.uniform();
-  if (u + v > 1) u = 1 - u, v = 1 - v;
-  const Vec3 a = p.verts[0].p, b = p.verts[k].p, c = p.verts[k + 1].p;
-  const Vec3 n = normalize(cross(b - a, c - a));
-  return nearest(a + (b - a) * u + (c - a) * v + n * rng.uniform(-reach, reach));
+  return nearest(near_surface_point(faces, rng, reach));
 }
 
 }  // namespace

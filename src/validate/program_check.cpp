@@ -70,16 +70,9 @@ class ProgramTruth {
   std::vector<std::unique_ptr<ExactSolid>> leaves_, hulls_;
 };
 
-// A point on a random face of a random leaf (uniform in the face's fan triangle), pushed off it.
+// A point near a random face of a random leaf.
 Vec3 near_surface(std::span<const std::vector<Polygon>> leaves, Rng& rng, double reach) {
-  const std::vector<Polygon>& polys = leaves[rng.below(leaves.size())];
-  const Polygon& p = polys[rng.below(polys.size())];
-  const std::size_t k = 1 + rng.below(p.verts.size() - 2);
-  double u = rng.uniform(), v = rng.uniform();
-  if (u + v > 1) u = 1 - u, v = 1 - v;
-  const Vec3 a = p.verts[0].p, b = p.verts[k].p, c = p.verts[k + 1].p;
-  const Vec3 n = normalize(cross(b - a, c - a));
-  return a + (b - a) * u + (c - a) * v + n * rng.uniform(-reach, reach);
+  return near_surface_point(leaves[rng.below(leaves.size())], rng, reach);
 }
 
 Box bounds_of(std::span<const std::vector<Polygon>> leaves) {

@@ -12,10 +12,7 @@
 
 namespace bsp {
 
-namespace {
-
-// A point on a random face of the polygons (uniform in the face's fan triangle), pushed off it.
-Vec3 near_surface(std::span<const Polygon> polys, Rng& rng, double reach) {
+Vec3 near_surface_point(std::span<const Polygon> polys, Rng& rng, double reach) {
   const Polygon& p = polys[rng.below(polys.size())];
   const std::size_t k = 1 + rng.below(p.verts.size() - 2);
   double u = rng.uniform(), v = rng.uniform();
@@ -24,8 +21,6 @@ Vec3 near_surface(std::span<const Polygon> polys, Rng& rng, double reach) {
   const Vec3 n = normalize(cross(b - a, c - a));
   return a + (b - a) * u + (c - a) * v + n * rng.uniform(-reach, reach);
 }
-
-}  // namespace
 
 bool in_result(SetOp op, bool in_a, bool in_b) {
   switch (op) {
@@ -54,7 +49,7 @@ SolidCheck check_set_operation(const SolidTree& result, const ExactSolid& a, con
       const Vec3 lo = sample_box.lo, hi = sample_box.hi;
       p = {rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y), rng.uniform(lo.z, hi.z)};
     } else {
-      p = near_surface(i % 4 == 1 ? a_polys : b_polys, rng, settings.near_distance * box.diagonal());
+      p = near_surface_point(i % 4 == 1 ? a_polys : b_polys, rng, settings.near_distance * box.diagonal());
     }
     ++c.points;
     const ExactSide sa = a.side(p), sb = b.side(p);

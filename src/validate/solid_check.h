@@ -8,6 +8,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "common/rng.h"
 #include "geometry/polygon.h"
 #include "solid/boundary.h"
 #include "solid/merge.h"
@@ -41,6 +42,10 @@ struct SolidCheck {
            boundary_volume_relative_error <= volume_tolerance;
   }
 };
+
+// A point on a random face of the polygons (uniform in the face's fan triangle), pushed off it along
+// the face's normal by up to `reach` either way: where the proofs look for misclassified points.
+Vec3 near_surface_point(std::span<const Polygon> polys, Rng& rng, double reach);
 
 // Whether a point inside (or not) each operand is inside a op b: the truth both proofs compare with.
 bool in_result(SetOp op, bool in_a, bool in_b);
