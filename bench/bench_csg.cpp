@@ -18,6 +18,7 @@
 #include <map>
 
 #include "bench_common.h"
+#include "common/errors.h"
 #include "csg_programs.h"
 #include "experiments/csg/evaluate.h"
 #include "experiments/csg/peers.h"
@@ -38,8 +39,13 @@ struct Program {
   std::map<std::string, experiments::PeerResult> peers;  // run once, on first use
 };
 
-Program& program(const std::string& name, std::uint64_t k) {
+std::map<std::string, std::unique_ptr<Program>>& programs() {
   static std::map<std::string, std::unique_ptr<Program>> cache;
+  return cache;
+}
+
+Program& program(const std::string& name, std::uint64_t k) {
+  auto& cache = programs();
   const std::string label = name + ":k=" + std::to_string(k);
   auto& p = cache[label];
   if (!p) {
@@ -66,6 +72,7 @@ void bm_csg(benchmark::State& state, std::string name, std::uint64_t k, std::str
   experiments::CsgSettings settings;
   settings.kernel = kernel;
   settings.prove = false;
+  settings.check_inputs = false;  // checked once, with the proof, below
   std::vector<double> build, merge, boundary, total;
   std::uint64_t peak = 0, steps = 0, faces = 0, nodes = 0;
   for (auto _ : state) {
@@ -90,6 +97,7 @@ void bm_csg(benchmark::State& state, std::string name, std::uint64_t k, std::str
   state.counters["result_nodes"] = static_cast<double>(nodes);
   state.counters["peak_resident_bytes"] = static_cast<double>(peak);
   settings.prove = true;
+  settings.check_inputs = true;
   settings.check.points = 2000;
   const auto splitter = make_splitter(heuristic, {}, kSeed);
   state.counters["proved"] = experiments::evaluate_program(p.loaded.program, p.loaded.postfix, *splitter, settings).check.ok();
@@ -111,6 +119,8 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i)
       if (std::string(argv[i]).rfind("--bsp_peer_timeout=", 0) == 0) {
         bsp::bench::peer_timeout = std::stod(argv[i] + 19);
+        if (!(bsp::bench::peer_timeout > 0 && bsp::bench::peer_timeout <= 86400))
+          throw bsp::UsageError("--bsp_peer_timeout takes seconds in (0, 86400]");
         for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
         --argc;
         break;
@@ -126,7 +136,9 @@ int main(int argc, char** argv) {
                 ->UseRealTime()
                 ->Iterations(3);
           }
-    return bsp::bench::run_benchmarks(argc, argv, "bspbench_bench_csg");
+    const int rc = bsp::bench::run_benchmarks(argc, argv, "bspbench_bench_csg");
+    for (const auto& [label, p] : bsp::bench::programs()) std::filesystem::remove_all(p->scratch);
+    return rc;
   } catch (const std::exception& e) {
     std::cerr << "bspbench_bench_csg: " << e.what() << "\n";
     return 2;

@@ -120,10 +120,21 @@ TEST(CsgLower, OpenScadSemanticsOfEmptyHiddenAndWrongDimensionChildren) {
       "difference() { group() { } cube(size = 1); }\n%cube(size = 2);\n*cube(size = 3);\n"
       "union() { square(size = [1, 1]); sphere(r = 1); }\n");
   EXPECT_EQ(p.stats.not_rendered, 2u);
-  EXPECT_EQ(p.stats.ignored_wrong_dimension, 1u);  // the union is 2D, as its first child is
+  EXPECT_EQ(p.stats.ignored_wrong_dimension, 1u);  // the union is 2D, as its first child is: an empty operand
   std::vector<StepKind> kinds;
   for (const Step& s : p.steps) kinds.push_back(s.kind);
-  EXPECT_EQ(kinds, (std::vector<StepKind>{StepKind::Empty, StepKind::Leaf, StepKind::Difference}));
+  EXPECT_EQ(kinds, (std::vector<StepKind>{StepKind::Empty, StepKind::Leaf, StepKind::Difference, StepKind::Empty,
+                                          StepKind::Union}));
+  // OpenSCAD renders intersection(){cube(10); square(5);} empty: the square is an empty operand.
+  const csg::Postfix mixed = lowered("intersection() { cube(size = 10); square(size = [5, 5]); }");
+  ASSERT_EQ(mixed.steps.size(), 3u);
+  EXPECT_EQ(mixed.steps[1].kind, StepKind::Empty);
+  EXPECT_EQ(mixed.steps[2].kind, StepKind::Intersection);
+  // Modifiers combine: a node both highlighted and disabled is dropped; a '!' inside a '%' subtree is
+  // not the root.
+  EXPECT_EQ(lowered("#*cube(size = 1);\nsphere(r = 1);").leaves.size(), 1u);
+  const csg::Postfix rooted = lowered("%group() { !cube(size = 1); }\nsphere(r = 1);\ncylinder(h = 1, r = 1);");
+  EXPECT_EQ(rooted.leaves.size(), 2u);
   EXPECT_EQ(error_of("square(size = 1);\ncube(size = 1);"),
             "t.csg: the program has no 3D object (its first top-level object is 2D): bspbench csg evaluates 3D programs");
 }
@@ -143,6 +154,10 @@ TEST(CsgLower, RefusedNodesNameTheFileLineAndNode) {
   EXPECT_EQ(error_of("sphere(r = nan);"), "t.csg:1: sphere: argument 'r' must be a finite number");
   EXPECT_EQ(error_of("polyhedron(points = [[0, 0, 0]], faces = [[0, 1, 2]]);"),
             "t.csg:1: polyhedron: a face refers to a point that does not exist (there are 1)");
+  // Bounded memory: an object of too many faces, or too many slices, is refused before it is made.
+  EXPECT_EQ(error_of("sphere($fn = 8000, r = 1);"), "t.csg:1: sphere: the object would have 32000002 faces, over 16777216");
+  EXPECT_EQ(error_of("linear_extrude(height = 1, slices = 1e10) { square(size = 1); }"),
+            "t.csg:1: linear_extrude: argument 'slices' is over 4194304");
   // Refused nodes that are not rendered are not refused.
   EXPECT_EQ(error_of("%text(text = \"a\");\ncube(size = 1);"), "");
 }
@@ -171,6 +186,25 @@ TEST(CsgEvaluate, ProgramsOfBoxesHaveTheirClosedFormVolumes) {
       EXPECT_EQ(e.steps.size(), 3u);  // the difference, the intersection, the top-level union
       EXPECT_EQ(e.leaves.size(), 5u);
     }
+  }
+}
+
+// A hull of a set operation (not of leaves) is proved in both kernels: the truth and CGAL's volume
+// take the hull the evaluation built, as they take leaves.
+TEST(CsgEvaluate, HullOfADifferenceIsProvedInBothKernels) {
+  const csg::Program program = csg::parse_program(
+      "hull() { difference() { cube(size = [4, 4, 4], center = true); sphere($fn = 16, r = 2.5); } }", "hull.csg");
+  const csg::Postfix postfix = csg::lower(program);
+  ASSERT_EQ(postfix.steps.back().kind, StepKind::Hull);
+  for (const Kernel kernel : {Kernel::Exact, Kernel::Float}) {
+    SCOPED_TRACE(kernel_name(kernel));
+    const auto splitter = make_splitter("octree", {}, 1);
+    experiments::CsgSettings settings;
+    settings.kernel = kernel;
+    settings.check.points = 2000;
+    const experiments::CsgEvaluation e = experiments::evaluate_program(program, postfix, *splitter, settings);
+    EXPECT_TRUE(e.check.ok()) << to_json(e.check).dump();
+    EXPECT_NEAR(e.check.volume, 64, 1e-6);  // the corners stay: the hull is the cube (snapped, in the exact kernel)
   }
 }
 
@@ -222,7 +256,9 @@ TEST(CsgSweep, RunsProveMatchTheirPeersAndRecordATimedOutPeer) {
       EXPECT_EQ(run["validation"]["status"], "timeout");
       ++timed_out;
     }
-    if (id["engine"] == "manifold") EXPECT_TRUE(run["validation"]["status"] == "ok" || run["validation"]["status"] == "missing");
+    if (id["engine"] == "manifold") {
+      EXPECT_TRUE(run["validation"]["status"] == "ok" || run["validation"]["status"] == "missing");
+    }
   }
   for (const auto& run : report["runs"]) {
     const auto& id = run["id"];
@@ -339,7 +375,9 @@ TEST_P(CsgExample, EvaluatesAndProvesOrIsRefusedWithItsReason) {
     EXPECT_EQ(check["border_edges"], 0);
     // A program of nothing (echo; example023, whose polygons OpenSCAD exports without points) has no
     // leaf to draw points near; every other one is compared.
-    if (name != "echo" && name != "example023") EXPECT_GT(check["compared"].get<int>(), 0);
+    if (name != "echo" && name != "example023") {
+      EXPECT_GT(check["compared"].get<int>(), 0);
+    }
   } else {
     EXPECT_EQ(r.code, 2) << r.out.substr(0, 200);
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

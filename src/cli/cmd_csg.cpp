@@ -149,15 +149,22 @@ int run(Args& args) {
   const experiments::ProgramSource source = experiments::parse_program_source(files[0]);
   for (const std::string& peer : peers)
     if (!experiments::is_peer(peer)) throw UsageError("--peers takes cgal, openscad and manifold, not '" + peer + "'");
-  const auto scratch = experiments::scratch_folder("cli");
+  if (engine != "bspbench" && engine != "cgal")
+    throw UsageError("--engine runs bspbench or cgal here; openscad and manifold run through --peers");
+  if (engine == "cgal" && (!peers.empty() || out_path)) throw UsageError("--engine cgal takes neither --peers nor --out");
+  // A scratch folder only where a file is written: a generated or exported program, or a peer's files
+  // (the CGAL child, which a timeout may kill, writes none for a program file).
+  const bool scratch_needed = source.generated() || source.name.rfind("openscad:", 0) == 0 || !peers.empty();
+  const auto scratch = scratch_needed ? experiments::scratch_folder("cli") : std::filesystem::path();
   struct Cleanup {
     std::filesystem::path dir;
-    ~Cleanup() { std::filesystem::remove_all(dir); }
+    ~Cleanup() {
+      if (!dir.empty()) std::filesystem::remove_all(dir);
+    }
   } cleanup{scratch};
   const experiments::LoadedProgram loaded = experiments::load_program(source, seed, scratch);
-  if (engine != "bspbench") {
+  if (engine == "cgal") {
     // One peer alone, in this process: how the csg runs time CGAL in a child they can stop.
-    if (engine != "cgal") throw UsageError("--engine runs bspbench or cgal here; openscad and manifold run through --peers");
     std::cout << to_json(experiments::run_cgal(loaded.postfix)).dump() << "\n";
     return 0;
   }

@@ -131,12 +131,18 @@ Affine multmatrix(const Args& a) {
   return m;
 }
 
+bool is_2d_format(const Node& import) {
+  const std::string ext = extension(import.arg("file") ? import.arg("file")->text : "");
+  return ext == ".dxf" || ext == ".svg";
+}
+
 // OpenSCAD refuses these, or evaluates them by means bspbench lacks; one line says which.
-void refuse(const Args& a) {
+[[noreturn]] void refuse(const Args& a) {
   const Node& n = a.n();
   if (is(n, {"text", "surface", "offset", "minkowski", "projection", "resize", "roof", "fill"}))
     a.fail("not supported by bspbench csg (only set operations, transforms, extrusions and hulls of polyhedra)");
-  if (n.name == "import") return;
+  if (n.name == "import" && is_2d_format(n))
+    a.fail("import of 2D formats (" + extension(n.arg("file")->text) + ") is not supported by bspbench csg");
   a.fail("unknown node");
 }
 
@@ -150,7 +156,7 @@ std::vector<std::uint8_t> dimensions(const Program& p) {
     if (not_rendered(n)) continue;
     if (is_primitive3(n)) dim[i] = 3;
     else if (is_primitive2(n) || is(n, {"text", "offset", "projection"})) dim[i] = 2;
-    else if (n.name == "import") dim[i] = extension(n.arg("file") ? n.arg("file")->text : "") == ".dxf" || extension(n.arg("file") ? n.arg("file")->text : "") == ".svg" ? 2 : 3;
+    else if (n.name == "import") dim[i] = is_2d_format(n) ? 2 : 3;
     else if (is(n, {"surface", "minkowski", "resize"})) dim[i] = 3;
     else
       for (std::uint32_t c : n.children)
@@ -162,14 +168,6 @@ std::vector<std::uint8_t> dimensions(const Program& p) {
   return dim;
 }
 
-// Signed volume of closed outward polygons: positive when they face outwards.
-double signed_volume(const std::vector<Polygon>& polys) {
-  double v = 0;
-  for (const Polygon& p : polys)
-    for (std::size_t i = 1; i + 1 < p.verts.size(); ++i)
-      v += dot(p.verts[0].p, cross(p.verts[i].p, p.verts[i + 1].p));
-  return v / 6;
-}
 
 class Lowering {
  public:
@@ -207,9 +205,16 @@ class Lowering {
     std::vector<Shape2> operands;
   };
 
+  // The first '!' node outside every '%' and '*' subtree. Nodes are in pre-order, so a forward
+  // sweep marks a node's children after the node itself.
   std::optional<std::uint32_t> first_root_modifier() const {
-    for (std::uint32_t i = 0; i < p_.nodes.size(); ++i)
-      if (p_.nodes[i].modifier == Modifier::Root) return i;
+    std::vector<bool> hidden(p_.nodes.size(), false);
+    for (std::uint32_t i = 0; i < p_.nodes.size(); ++i) {
+      const Node& n = p_.nodes[i];
+      hidden[i] = hidden[i] || not_rendered(n);
+      if (!hidden[i] && n.modifier == Modifier::Root) return i;
+      for (const std::uint32_t c : n.children) hidden[c] = hidden[i];
+    }
     return std::nullopt;
   }
 
@@ -230,7 +235,10 @@ class Lowering {
         continue;
       }
       if (dim_[c] == 2) {
+        // OpenSCAD gives a child of the other dimension no geometry: an empty operand.
         ++out_.stats.ignored_wrong_dimension;
+        out_.steps.push_back({StepKind::Empty, 0, c});
+        ++f.operands;
         continue;
       }
       if (is_container(n)) {
@@ -276,7 +284,18 @@ class Lowering {
     emit_mesh(hull3(points), Affine{}, f.node);
   }
 
-  void emit_primitive(std::uint32_t c, const Affine& m) { emit_mesh(primitive(Args(p_, c)), m, c); }
+  void emit_primitive(std::uint32_t c, const Affine& m) { emit_mesh(named(c, [&] { return primitive(Args(p_, c)); }), m, c); }
+
+  // What `make` throws, prefixed with the file, line and node unless it already names them.
+  template <class F>
+  auto named(std::uint32_t c, F make) -> decltype(make()) {
+    try {
+      return make();
+    } catch (const InputError& e) {
+      if (std::string_view(e.what()).rfind(p_.path + ":", 0) == 0) throw;
+      Args(p_, c).fail(e.what());
+    }
+  }
 
   void emit_mesh(const Mesh& mesh, const Affine& m, std::uint32_t c) {
     if (mesh.faces.empty() || std::abs(m.det()) == 0.0) {
@@ -307,7 +326,7 @@ class Lowering {
     if (n.name == "linear_extrude") return extrude(a, true);
     if (n.name == "rotate_extrude") return extrude(a, false);
     if (n.name == "import") return import_mesh(a);
-    refuse(a);
+    refuse(a);  // throws
     return {};
   }
 
@@ -342,15 +361,10 @@ class Lowering {
     const Value& file = a.required("file");
     if (file.type != Value::Type::String) a.fail("'file' must be a string");
     const std::string ext = extension(file.text);
-    if (ext == ".dxf" || ext == ".svg") a.fail("import of 2D formats (" + ext + ") is not supported by bspbench csg");
+    if (is_2d_format(a.n())) refuse(a);
     if (ext != ".stl" && ext != ".off") a.fail("import of '" + ext + "' files is not supported (STL and OFF are)");
     const std::filesystem::path path = std::filesystem::path(file.text).is_absolute() ? std::filesystem::path(file.text) : dir_ / file.text;
-    Scene scene;
-    try {
-      scene = read_mesh(path.string());
-    } catch (const InputError& e) {
-      a.fail(e.what());
-    }
+    const Scene scene = read_mesh(path.string());
     Mesh mesh;
     for (const Polygon& poly : scene.polygons) {
       std::vector<std::uint32_t> face;
@@ -371,7 +385,9 @@ class Lowering {
       p.height = a.number("height", 100);
       p.center = a.boolean("center", false);
       p.twist = a.number("twist", 0);
-      p.slices = static_cast<int>(a.number("slices", 0));
+      const double slices = a.number("slices", 0);  // below 1: OpenSCAD's default rule
+      if (slices > kMaxFragments) a.fail("argument 'slices' is over " + std::to_string(kMaxFragments));
+      p.slices = slices >= 1 ? static_cast<int>(slices) : 0;
       const std::vector<double> s = a.numbers("scale", 2, 1);
       p.scale = {s[0], s[1]};
       p.res = a.resolution();
@@ -380,11 +396,7 @@ class Lowering {
     RotateExtrude p;
     p.angle = a.number("angle", 360);
     p.res = a.resolution();
-    try {
-      return rotate_extrude(shape, triangulate(shape), p);
-    } catch (const InputError& e) {
-      a.fail(e.what());
-    }
+    return rotate_extrude(shape, triangulate(shape), p);
   }
 
   // The 2D subtree under an extrusion, evaluated bottom-up with a stack of open containers.
@@ -405,11 +417,12 @@ class Lowering {
       if (not_rendered(child)) {
         ++out_.stats.not_rendered;
       } else if (dim_[c] == 3) {
-        ++out_.stats.ignored_wrong_dimension;
+        ++out_.stats.ignored_wrong_dimension;  // an empty operand, as OpenSCAD makes it
+        f.operands.emplace_back();
       } else if (is_container(child)) {
         stack.push_back({c, child.name == "multmatrix" ? f.m.then(multmatrix(Args(p_, c))) : f.m, 0, {}});
       } else {
-        f.operands.push_back(transform_2d(primitive_2d(Args(p_, c)), f.m));
+        f.operands.push_back(transform_2d(named(c, [&] { return primitive_2d(Args(p_, c)); }), f.m));
       }
     }
   }
@@ -433,7 +446,6 @@ class Lowering {
     }
     if (n.name == "circle") return circle(a.number("r", 1), a.resolution());
     if (n.name == "polygon") return polygon_2d(a);
-    if (n.name == "import") import_mesh(a);  // refuses 2D formats
     refuse(a);
     return {};
   }
@@ -496,7 +508,7 @@ class Lowering {
       append_clean_polygon(std::move(poly), eps, out, load);
     }
     out_.stats.cleaned_faces += load.triangulated + load.dropped_degenerate + load.dropped_duplicate_vertex;
-    if (signed_volume(out) < 0) {
+    if (enclosed_volume(out) < 0) {
       ++out_.stats.flipped_leaves;
       for (Polygon& p : out) std::reverse(p.verts.begin(), p.verts.end());
     }
@@ -513,6 +525,12 @@ class Lowering {
 }  // namespace
 
 Postfix lower(const Program& program) { return Lowering(program).run(); }
+
+std::vector<std::vector<Polygon>> Postfix::leaf_meshes() const {
+  std::vector<std::vector<Polygon>> out;
+  for (const Leaf& leaf : leaves) out.push_back(leaf.polygons);
+  return out;
+}
 
 std::string describe(const Program& program, std::uint32_t node) {
   if (node >= program.nodes.size()) return "program";

@@ -40,6 +40,9 @@ struct Postfix {
   std::vector<Leaf> leaves;
   std::vector<Step> steps;  // leaves a single operand: the program's solid
   LowerStats stats;
+
+  // The leaves' polygons alone, as the proof and the CGAL peer take them.
+  std::vector<std::vector<Polygon>> leaf_meshes() const;
 };
 
 // Imports are resolved relative to the program file's directory, as OpenSCAD resolves them.

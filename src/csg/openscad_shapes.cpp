@@ -51,10 +51,23 @@ Resolution clamped(Resolution res) {
 // A slice count OpenSCAD would have computed as an int; refuse what cannot be one (UB there).
 int checked_count(double count, const char* what) {
   if (!(count <= double(kMaxFragments))) {
-    throw InputError(std::string("csg: ") + what + " count " + std::to_string(count) +
+    throw InputError(std::string(what) + " count " + std::to_string(count) +
                      " is not usable (over " + std::to_string(kMaxFragments) + " or undefined)");
   }
   return static_cast<int>(count);
+}
+
+// Bounded memory: an object that would have more faces than kMaxFaces is refused before it is made.
+void check_faces(double faces) {
+  if (!(faces <= double(kMaxFaces)))
+    throw InputError("the object would have " + std::to_string(static_cast<unsigned long long>(faces)) + " faces, over " +
+                     std::to_string(kMaxFaces));
+}
+
+double ring_points(const Shape2& shape) {
+  double n = 0;
+  for (const Ring& o : shape.rings) n += static_cast<double>(o.points.size());
+  return n;
 }
 
 // Points of a circle as OpenSCAD's generate_circle and circle() make them (primitives.cc).
@@ -223,6 +236,7 @@ Mesh extrude(const Shape2& shape, const std::vector<Triangle2>& bottom, const st
   for (const Triangle2& t : bottom) out.add({cap(t[2], h1), cap(t[1], h1), cap(t[0], h1)});
   for (const Triangle2& t : top) out.add({cap(t[0], h2), cap(t[1], h2), cap(t[2], h2)});
   const unsigned slices = slice_count(shape, p);
+  check_faces(2.0 * ring_points(shape) * slices + double(bottom.size() + top.size()));
   for (unsigned j = 0; j < slices; ++j) add_slice(out, shape, level(p, h1, h2, j, slices), level(p, h1, h2, j + 1, slices));
   return out.take();
 }
@@ -245,7 +259,7 @@ XRange one_sided_x_range(const Shape2& shape) {
       x.min = std::fmin(x.min, v.x);
       x.max = std::fmax(x.max, v.x);
       if ((x.max - x.min) > x.max && (x.max - x.min) > std::fabs(x.min))
-        throw InputError("csg: all points for rotate_extrude() must have the same X coordinate sign (range is " +
+        throw InputError("all points for rotate_extrude() must have the same X coordinate sign (range is " +
                          std::to_string(x.min) + " -> " + std::to_string(x.max) + ")");
     }
   return x;
@@ -413,6 +427,7 @@ Mesh sphere(double r, const Resolution& res) {
   if (!(r > 0) || std::isinf(r)) return {};
   const int n = fragments(r, clamped(res));
   const int rings = (n + 1) / 2;
+  check_faces(double(n) * rings + 2);
   std::vector<std::vector<Vec3>> ring(rings);
   for (int i = 0; i < rings; ++i) {
     const double phi = (180.0 * (i + 0.5)) / rings;
@@ -543,6 +558,7 @@ Mesh rotate_extrude(const Shape2& shape, const std::vector<Triangle2>& cap, cons
   const XRange x = one_sided_x_range(shape);
   const Revolution rev{angle, static_cast<unsigned>(std::fmax(fragments(x.max - x.min, given.res) * std::fabs(angle) / 360, 1)),
                        (x.min >= 0 && angle > 0 && angle != 360) || (x.min < 0 && (angle < 0 || angle == 360))};
+  check_faces(2.0 * ring_points(shape) * rev.n + 2.0 * double(cap.size()));
   MeshBuilder out;
   if (angle != 360) add_end_caps(out, cap, rev);
   for (const Ring& o : shape.rings) add_revolved_ring(out, o, rev);

@@ -55,6 +55,9 @@ double cos_degrees(double deg);
 // where OpenSCAD's count is not a usable int (e.g. $fs = $fa = 0, or more than kMaxFragments).
 int fragments(double r, const Resolution& res);
 inline constexpr int kMaxFragments = 1 << 22;
+// The most faces one primitive or extrusion may have (a 4096-fragment sphere has 8.4 million):
+// beyond it the object is refused with InputError before any memory is taken for it.
+inline constexpr std::uint64_t kMaxFaces = std::uint64_t{1} << 24;
 
 // OpenSCAD's Calc::get_helix_slices, get_conical_helix_slices and get_diagonal_slices (calc.cc).
 int helix_slices(double r_sqr, double height, double twist, const Resolution& res);

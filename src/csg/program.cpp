@@ -209,9 +209,8 @@ Program parse_program(std::string_view text, std::string path) {
     }
     if (lex.accept(';')) continue;  // an empty statement
     Node node;
-    node.modifier = parse_modifier(lex);
-    while (parse_modifier(lex) != Modifier::None) {
-    }  // OpenSCAD lets modifiers repeat; the first one decides
+    // Modifiers combine as OpenSCAD's flags do: disabled over background over root over highlight.
+    for (Modifier m; (m = parse_modifier(lex)) != Modifier::None;) node.modifier = std::max(node.modifier, m);
     node.line = lex.line();
     node.name = lex.identifier();
     parse_args(lex, node);

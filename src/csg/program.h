@@ -21,9 +21,10 @@ struct Value {
   std::vector<Value> items;
 };
 
-// OpenSCAD's modifier characters: '%' background (shown, not rendered), '#' highlight (rendered),
-// '!' root (only this subtree is rendered), '*' disable (dropped).
-enum class Modifier : std::uint8_t { None, Background, Highlight, Root, Disable };
+// OpenSCAD's modifier characters: '#' highlight (rendered), '!' root (only this subtree is
+// rendered), '%' background (shown, not rendered), '*' disable (dropped). Several on one node
+// combine: the later in this order wins (a disabled node is dropped whatever else it is marked).
+enum class Modifier : std::uint8_t { None, Highlight, Root, Background, Disable };
 
 struct Node {
   std::string name;

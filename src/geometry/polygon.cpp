@@ -191,4 +191,11 @@ SplitResult split(const Polygon& poly, const Plane& plane, double eps) {
   return out;
 }
 
+double enclosed_volume(std::span<const Polygon> polys) {
+  double six = 0;
+  for (const Polygon& p : polys)
+    for (std::size_t i = 1; i + 1 < p.verts.size(); ++i) six += dot(p.verts[0].p, cross(p.verts[i].p, p.verts[i + 1].p));
+  return six / 6;
+}
+
 }  // namespace bsp

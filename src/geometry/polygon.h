@@ -34,6 +34,9 @@ Vec3 centroid(const Polygon& poly);  // vertex average (exact for the convex fra
 // Supporting plane through the centroid; nullopt for a degenerate polygon (zero area).
 std::optional<Plane> supporting_plane(const Polygon& poly);
 double longest_edge(const Polygon& poly);
+// The signed volume closed polygons enclose (divergence theorem, each polygon fanned from its first
+// vertex): positive when they face outwards.
+double enclosed_volume(std::span<const Polygon> polys);
 
 Side classify(const Polygon& poly, const Plane& plane, double eps);
 Side classify(std::span<const Vec3> points, const Plane& plane, double eps);

@@ -2,7 +2,7 @@
 // A program of set operations on closed solids in postfix order: what a CSG program (OpenSCAD's
 // CSG format, csg/lower.h) becomes once its transforms and 2D parts are applied, and what every
 // engine evaluates alike, bspbench's merges (csg/evaluate.h) and CGAL's corefinement step by step
-// (validate/exact_program.h), so they take the same polyhedra in the same order.
+// (validate/exact_measure.h: exact_corefine_program), so they take the same polyhedra in the same order.
 #include <cstdint>
 
 namespace bsp {

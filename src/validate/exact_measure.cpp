@@ -468,7 +468,7 @@ ProgramOperand hull(std::span<ProgramOperand> operands) {
   if (points.size() < 4) return std::nullopt;
   EpeckMesh out;
   CGAL::convex_hull_3(points.begin(), points.end(), out);
-  if (out.number_of_faces() < 4) return std::nullopt;
+  if (out.number_of_faces() < 4 || PMP::volume(out) == 0) return std::nullopt;  // coplanar points: no solid
   return out;
 }
 
@@ -554,7 +554,9 @@ ProgramOperand fold(std::vector<ProgramOperand> ops, StepKind kind, Order order,
 
 }  // namespace
 
-ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, Order order) {
+ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, Order order,
+                                          const std::vector<std::vector<Polygon>>* hulls) {
+  std::size_t next_hull = 0;
   const auto start = std::chrono::steady_clock::now();
   ExactProgramVolume out;
   std::vector<ProgramOperand> stack;
@@ -567,7 +569,10 @@ ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> 
       if (step.count > stack.size()) throw std::logic_error("exact_corefine_program: a step pops more operands than pushed");
       const auto first = stack.end() - step.count;
       ProgramOperand result;
-      if (step.kind == StepKind::Hull) {
+      if (step.kind == StepKind::Hull && hulls) {
+        const std::vector<Polygon>& given = (*hulls)[next_hull++];
+        if (!given.empty()) result = epeck_mesh(given);
+      } else if (step.kind == StepKind::Hull) {
         result = hull(std::span<ProgramOperand>(&*first, step.count));
         ++out.operations;
       } else {

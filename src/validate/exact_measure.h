@@ -87,13 +87,17 @@ struct ExactProgramVolume {
   std::string error;
 };
 enum class Order : std::uint8_t { LeftToRight, Balanced };
+// `hulls`, when given, are the hull steps' results in order (one mesh each, empty for none): a proof
+// takes the evaluator's hulls as it takes its leaves, so both measure the same polyhedra.
 ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps,
-                                          Order order = Order::LeftToRight);
+                                          Order order = Order::LeftToRight,
+                                          const std::vector<std::vector<Polygon>>* hulls = nullptr);
 
 // The same program with CGAL's Nef polyhedra (exact_nef.cpp), which, unlike corefinement, accept
 // the non-manifold solids a program can make (two parts touching along an edge or at a vertex) as
 // operands of the next step: the reference where corefinement refuses an intermediate result.
 ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps,
-                                     Order order = Order::LeftToRight);
+                                     Order order = Order::LeftToRight,
+                                     const std::vector<std::vector<Polygon>>* hulls = nullptr);
 
 }  // namespace bsp

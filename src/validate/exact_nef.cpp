@@ -49,7 +49,7 @@ Nef hull(std::span<const Nef> operands) {
   if (points.size() < 4) return Nef();
   Mesh out;
   CGAL::convex_hull_3(points.begin(), points.end(), out);
-  if (out.number_of_faces() < 4) return Nef();
+  if (out.number_of_faces() < 4 || PMP::volume(out) == 0) return Nef();  // coplanar points: no solid
   return Nef(out);
 }
 
@@ -97,7 +97,9 @@ NefResult nef_set_operation(std::span<const Polygon> a, std::span<const Polygon>
   return r;
 }
 
-ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, Order order) {
+ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, Order order,
+                                     const std::vector<std::vector<Polygon>>* hulls) {
+  std::size_t next_hull = 0;
   const auto start = std::chrono::steady_clock::now();
   ExactProgramVolume out;
   std::vector<Nef> stack;
@@ -110,7 +112,10 @@ ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leave
       if (step.count > stack.size()) throw std::logic_error("exact_nef_program: a step pops more operands than pushed");
       const auto first = stack.end() - step.count;
       Nef result;  // empty
-      if (step.kind == StepKind::Hull) {
+      if (step.kind == StepKind::Hull && hulls) {
+        const std::vector<Polygon>& given = (*hulls)[next_hull++];
+        if (!given.empty()) result = nef_of(given);
+      } else if (step.kind == StepKind::Hull) {
         result = hull(std::span<const Nef>(&*first, step.count));
         ++out.operations;
       } else {

@@ -115,12 +115,13 @@ void sample(ProgramCheck& c, std::span<const std::vector<Polygon>> leaves, const
 // CGAL's corefinement, each step's operands combined as a balanced tree (the same solid, without
 // the quadratic cost of re-cutting a growing result once per operand); where it refuses (an intermediate result is not a manifold
 // mesh: parts touching along an edge), Nef polyhedra, which take any solid.
-void corefine_volume(ProgramCheck& c, std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, double unit) {
-  ExactProgramVolume r = exact_corefine_program(leaves, steps, Order::Balanced);
+void corefine_volume(ProgramCheck& c, std::span<const std::vector<Polygon>> leaves, const std::vector<std::vector<Polygon>>& hulls,
+                     std::span<const Step> steps, double unit) {
+  ExactProgramVolume r = exact_corefine_program(leaves, steps, Order::Balanced, &hulls);
   c.reference = "corefine";
   if (!r.error.empty()) {
     c.corefine_refused = r.error;
-    r = exact_nef_program(leaves, steps, Order::Balanced);
+    r = exact_nef_program(leaves, steps, Order::Balanced, &hulls);
     c.reference = "nef";
   }
   c.corefine_error = r.error;
@@ -154,7 +155,7 @@ ProgramCheck check_program(const SolidTree& result, const LoopPool& boundary, st
   const BoundaryCheck b = check_boundary(boundary, eps);
   c.boundary_faces = b.faces;
   c.border_edges = b.edges.border_edges;
-  corefine_volume(c, leaves, steps, 1.0);
+  corefine_volume(c, leaves, std::vector<std::vector<Polygon>>(hulls.begin(), hulls.end()), steps, 1.0);
   return c;
 }
 
@@ -178,7 +179,7 @@ ProgramCheck check_exact_program(const ExactSolidTree& result, const ExactSolidS
   c.volume = b.volume_double * step * step * step;
   c.boundary_faces = b.faces;
   c.border_edges = b.border_segments;
-  corefine_volume(c, grid_leaves, steps, step);
+  corefine_volume(c, grid_leaves, grid_hulls, steps, step);
   return c;
 }
 

@@ -3,10 +3,12 @@
 // one operation: points classified by the result tree against the truth the program itself gives
 // (CGAL's exact side-of-mesh on every leaf, combined step by step), the result's volume against
 // CGAL's corefinement of the same leaves with exact constructions (exact_corefine_program, each
-// step's operands combined as a balanced tree), and the boundary closed. A hull step's truth is the side of the hull
-// mesh the evaluation built (`hulls`, one per hull step in order); CGAL's volume computes its own
-// hull, so a wrong hull still fails the volume. Where corefinement refuses an intermediate result
-// (not a manifold mesh), the reference volume is CGAL's Nef polyhedra's (exact_nef_program).
+// step's operands combined as a balanced tree), and the boundary closed. A hull of set operations
+// (a hull of leaves is a leaf already, csg/lower.h) is taken as the evaluation built it (`hulls`,
+// one mesh per hull step in order) by the truth and the volume alike, as leaves are: its vertices
+// are the result's, rounded, which CGAL's exact hull of the exact result would not reproduce. Where
+// corefinement refuses an intermediate result (not a manifold mesh), the reference volume is CGAL's
+// Nef polyhedra's (exact_nef_program).
 #include <cstdint>
 #include <span>
 #include <string>

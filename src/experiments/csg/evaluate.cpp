@@ -63,7 +63,8 @@ struct FloatKernel {
   Tree merge(const Tree& a, const Tree& b, SetOp op, MergeStats& stats) { return bsp::merge(a, b, op, &stats); }
   void release(const Tree&, const Tree&) {}  // float trees own their geometry
   static SolidSize size(const Tree& t) { return solid_size(t); }
-  LoopPool boundary(const Tree& t) const { return solid_boundary(t); }
+  LoopPool boundary(const Tree& t) { return solid_boundary(t); }
+  std::vector<Vec3> boundary_points(const Tree& t) const { return solid_boundary(t).points; }
   double eps() const { return Tolerance::for_extent(box.diagonal()).plane_eps; }
 };
 
@@ -85,11 +86,21 @@ struct ExactKernel {
   // follows the live trees, not the program's length.
   void release(const Tree& operand, const Tree& result) { discard(operand, result, Tree{}, *space); }
   static SolidSize size(const Tree& t) { return solid_size(t); }
+  // The result's boundary, its exact faces kept for the proof.
   LoopPool boundary(const Tree& t) {
     faces = exact_solid_boundary(t, *space);
     LoopPool loops;
     for (const PlanePolygon& f : faces) loops.add(vertex_positions(f, space->grid()));
     return loops;
+  }
+  // An operand's boundary vertices, for a hull; the result's faces stay as they are.
+  std::vector<Vec3> boundary_points(const Tree& t) const {
+    std::vector<Vec3> out;
+    for (const PlanePolygon& f : exact_solid_boundary(t, *space)) {
+      const std::vector<Vec3> v = vertex_positions(f, space->grid());
+      out.insert(out.end(), v.begin(), v.end());
+    }
+    return out;
   }
   double eps() const { return Tolerance::for_extent(box.diagonal()).plane_eps; }
 };
@@ -201,8 +212,8 @@ class Evaluator {
         for (const Polygon& p : *o.mesh)
           for (const Vertex& v : p.verts) points.push_back(v.p);
       } else if (o.tree) {
-        const LoopPool loops = k_.boundary(*o.tree);
-        points.insert(points.end(), loops.points.begin(), loops.points.end());
+        const std::vector<Vec3> v = k_.boundary_points(*o.tree);
+        points.insert(points.end(), v.begin(), v.end());
       }
     }
     const csg::Mesh mesh = csg::hull3(points);
@@ -250,12 +261,6 @@ SolidTree empty_solid(const Box& box) {
   return t;
 }
 
-std::vector<std::vector<Polygon>> leaf_meshes(const csg::Postfix& postfix) {
-  std::vector<std::vector<Polygon>> out;
-  for (const csg::Leaf& leaf : postfix.leaves) out.push_back(leaf.polygons);
-  return out;
-}
-
 }  // namespace
 
 CsgEvaluation evaluate_program(const csg::Program& program, const csg::Postfix& postfix, Splitter& splitter,
@@ -269,25 +274,25 @@ CsgEvaluation evaluate_program(const csg::Program& program, const csg::Postfix& 
   const auto start = std::chrono::steady_clock::now();
   if (settings.kernel == Kernel::Float) {
     FloatKernel k{box};
-    check_leaves(program, postfix, settings.kernel, box, nullptr);
+    if (settings.check_inputs) check_leaves(program, postfix, settings.kernel, box, nullptr);
     out.check_seconds = seconds_since(start);
     Evaluator<FloatKernel> e(postfix, splitter, k, out);
     const std::optional<SolidTree> result = e.run();
     const auto proof_start = std::chrono::steady_clock::now();
     if (settings.prove)
-      out.check = check_program(result ? *result : empty_solid(box), e.boundary(), leaf_meshes(truth), e.hulls(), truth.steps,
+      out.check = check_program(result ? *result : empty_solid(box), e.boundary(), truth.leaf_meshes(), e.hulls(), truth.steps,
                                 settings.check);
     out.proof_seconds = seconds_since(proof_start);
     return out;
   }
   ExactKernel k{ExactSolidSpace::for_box(box), box, {}};
-  check_leaves(program, postfix, settings.kernel, box, k.space.get());
+  if (settings.check_inputs) check_leaves(program, postfix, settings.kernel, box, k.space.get());
   out.check_seconds = seconds_since(start);
   Evaluator<ExactKernel> e(postfix, splitter, k, out);
   const std::optional<ExactSolidTree> result = e.run();
   const auto proof_start = std::chrono::steady_clock::now();
   if (settings.prove)
-    out.check = check_exact_program(result ? *result : ExactSolidTree{}, *k.space, k.faces, leaf_meshes(truth), e.hulls(),
+    out.check = check_exact_program(result ? *result : ExactSolidTree{}, *k.space, k.faces, truth.leaf_meshes(), e.hulls(),
                                     truth.steps, settings.check);
   out.proof_seconds = seconds_since(proof_start);
   return out;

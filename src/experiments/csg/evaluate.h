@@ -53,6 +53,9 @@ struct CsgSettings {
   Kernel kernel = Kernel::Exact;
   SolidCheckSettings check;
   bool prove = true;
+  // Prove every leaf a closed solid free of self-intersections first; repeated evaluations of
+  // leaves already checked (timing) leave it out.
+  bool check_inputs = true;
   // The program the result is proved against; nullptr: the one evaluated. Tests plant a wrong
   // evaluation (a step's operation changed) and show the proof catches it.
   const csg::Postfix* truth = nullptr;

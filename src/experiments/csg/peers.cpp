@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/errors.h"
+#include "experiments/csg/programs.h"
 #include "io/mesh_reader.h"
 #include "validate/exact_measure.h"
 
@@ -22,8 +23,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
-
 std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::ostringstream s;
@@ -32,12 +31,14 @@ std::string slurp(const std::filesystem::path& p) {
 }
 
 // Runs `command` under coreutils' timeout; returns its exit status (124: timed out) and wall time.
+// `command` is shell text whose paths went through shell_quoted.
 std::pair<int, double> run_timed(const std::string& command, double timeout_seconds) {
   const auto start = std::chrono::steady_clock::now();
   const std::string cmd = "timeout -k 5 " + std::to_string(timeout_seconds) + " " + command;  // fractions allowed
   const int status = std::system(cmd.c_str());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, seconds};
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return {code == 137 ? 124 : code, seconds};  // 137: killed by -k after ignoring the first signal
 }
 
 std::string first_line(const std::string& text) {
@@ -53,12 +54,14 @@ PeerResult cgal_child(const std::filesystem::path& program, const std::filesyste
   PeerResult r;
   r.engine = "cgal";
   const auto out = scratch / "cgal.json", log = scratch / "cgal.log";
-  const auto [code, seconds] = run_timed(quoted(settings.self) + " csg " + quoted(program) + " --engine cgal --json > " + quoted(out) +
-                                             " 2> " + quoted(log),
+  const auto [code, seconds] = run_timed(shell_quoted(settings.self) + " csg " + shell_quoted(program) + " --engine cgal --json > " + shell_quoted(out) +
+                                             " 2> " + shell_quoted(log),
                                          settings.timeout);
   if (code == 124) return r.seconds = seconds, r.status = "timeout", r.note = "killed after " + std::to_string(settings.timeout) + " s", r;
   if (code != 0) return r.seconds = seconds, r.status = "error", r.note = first_line(slurp(log)), r;
-  return peer_result_from_json(json::parse(slurp(out)));
+  const json reply = json::parse(slurp(out), nullptr, false);
+  if (reply.is_discarded()) return r.seconds = seconds, r.status = "error", r.note = "no JSON from the CGAL child", r;
+  return peer_result_from_json(reply);
 }
 
 }  // namespace
@@ -66,9 +69,7 @@ PeerResult cgal_child(const std::filesystem::path& program, const std::filesyste
 PeerResult run_cgal(const csg::Postfix& postfix) {
   PeerResult r;
   r.engine = "cgal";
-  std::vector<std::vector<Polygon>> leaves;
-  for (const csg::Leaf& leaf : postfix.leaves) leaves.push_back(leaf.polygons);
-  const ExactProgramVolume v = exact_corefine_program(leaves, postfix.steps);
+  const ExactProgramVolume v = exact_corefine_program(postfix.leaf_meshes(), postfix.steps);
   r.version = "CGAL corefinement, Epeck, step by step";
   r.seconds = v.seconds;
   r.volume = v.volume_double;
@@ -89,27 +90,21 @@ double rounding_bound(const std::vector<Polygon>& polys) {
   return area_sum * std::sqrt(3.0) * 5e-6 * max_abs;
 }
 
-double signed_volume(const std::vector<Polygon>& polys) {
-  double v = 0;
-  for (const Polygon& p : polys)
-    for (std::size_t i = 1; i + 1 < p.verts.size(); ++i) v += dot(p.verts[0].p, cross(p.verts[i].p, p.verts[i + 1].p));
-  return v / 6;
-}
 
 PeerResult openscad(const std::filesystem::path& program, const std::filesystem::path& scratch, double timeout) {
   PeerResult r;
   r.engine = "openscad";
   if (!have("openscad")) return r.status = "missing", r.note = "openscad is not installed (.ci/setup installs Debian's openscad)", r;
   const auto out = scratch / "openscad.off", log = scratch / "openscad.log";
-  std::system(("openscad --version > " + quoted(log) + " 2>&1").c_str());
+  std::system(("openscad --version > " + shell_quoted(log) + " 2>&1").c_str());
   r.version = first_line(slurp(log));
-  const auto [code, seconds] = run_timed("openscad -o " + quoted(out) + " " + quoted(program) + " > " + quoted(log) + " 2>&1", timeout);
+  const auto [code, seconds] = run_timed("openscad -o " + shell_quoted(out) + " " + shell_quoted(program) + " > " + shell_quoted(log) + " 2>&1", timeout);
   r.seconds = seconds;
   if (code == 124) return r.status = "timeout", r.note = "killed after " + std::to_string(timeout) + " s", r;
   if (code != 0 || !std::filesystem::exists(out)) return r.status = "error", r.note = first_line(slurp(log)), r;
   try {
     const Scene result = read_mesh(out.string());
-    r.volume = signed_volume(result.polygons);
+    r.volume = enclosed_volume(result.polygons);
     r.triangles = result.polygons.size();
     r.volume_rounding_bound = rounding_bound(result.polygons);
   } catch (const InputError& e) {
@@ -137,10 +132,11 @@ PeerResult manifold(const csg::Postfix& postfix, const std::filesystem::path& sc
   const auto in = scratch / "manifold.json", out = scratch / "manifold.out", log = scratch / "manifold.log";
   std::ofstream(in) << program.dump();
   // Three repeats, their median: the first includes compiling the WebAssembly (its README).
-  const auto [code, seconds] = run_timed("node " + quoted(script) + " " + quoted(in) + " --repeat 3 > " + quoted(out) + " 2> " + quoted(log), timeout);
+  const auto [code, seconds] = run_timed("node " + shell_quoted(script) + " " + shell_quoted(in) + " --repeat 3 > " + shell_quoted(out) + " 2> " + shell_quoted(log), timeout);
   if (code == 124) return r.seconds = seconds, r.status = "timeout", r.note = "killed after " + std::to_string(timeout) + " s", r;
   if (code != 0) return r.seconds = seconds, r.status = "error", r.note = first_line(slurp(log)), r;
-  const json line = json::parse(slurp(out));
+  const json line = json::parse(slurp(out), nullptr, false);
+  if (line.is_discarded() || !line.is_object()) return r.seconds = seconds, r.status = "error", r.note = "no JSON line from run.mjs", r;
   r.version = "manifold-3d " + line.value("version", "") + ", node " + line.value("node", "");
   r.threads = line.value("threads", 1);
   r.status = line.value("status", "error");
@@ -164,7 +160,26 @@ PeerResult run_peer(std::string_view engine, const std::filesystem::path& progra
 
 std::filesystem::path self_executable() { return std::filesystem::read_symlink("/proc/self/exe"); }
 
+// How deep the program's operations nest: run.mjs refuses more than kMaxManifoldDepth, and JSON that
+// deep is written and read recursively.
+std::size_t nesting(const csg::Postfix& postfix) {
+  std::vector<std::size_t> depth;
+  std::size_t most = 0;
+  for (const Step& s : postfix.steps) {
+    std::size_t d = 1;
+    for (std::uint32_t i = 0; s.kind != StepKind::Leaf && i < s.count; ++i) {
+      d = std::max(d, depth.back() + 1);
+      depth.pop_back();
+    }
+    depth.push_back(d);
+    most = std::max(most, d);
+  }
+  return most;
+}
+
 json manifold_program(const csg::Postfix& postfix) {
+  if (nesting(postfix) > kMaxManifoldDepth)
+    throw InputError("operations nested deeper than " + std::to_string(kMaxManifoldDepth) + ", more than the Manifold peer reads");
   json meshes = json::array();
   for (const csg::Leaf& leaf : postfix.leaves) {
     std::vector<double> vertices;

@@ -54,9 +54,11 @@ std::filesystem::path self_executable();
 nlohmann::json to_json(const PeerResult& r);
 PeerResult peer_result_from_json(const nlohmann::json& j);
 
+inline constexpr std::size_t kMaxManifoldDepth = 1000;
+
 // The program as bench/peers/manifold/run.mjs reads it: indexed triangle meshes of the leaves (convex
 // faces fanned, equal coordinates one vertex) and the operations as a tree. Throws InputError for a
-// hull step, which that format lacks.
+// hull step, which that format lacks, and for operations nested deeper than kMaxManifoldDepth.
 nlohmann::json manifold_program(const csg::Postfix& postfix);
 
 }  // namespace bsp::experiments

@@ -12,8 +12,6 @@ namespace bsp::experiments {
 
 namespace {
 
-std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
-
 std::filesystem::path write_generated(const ProgramSource& s, std::uint64_t seed, const std::filesystem::path& scratch) {
   const auto file = scratch / (s.name + "-k" + std::to_string(s.k) + "-s" + std::to_string(seed) + ".csg");
   std::ofstream out(file, std::ios::binary);
@@ -31,8 +29,8 @@ std::filesystem::path export_example(const std::string& name, const std::filesys
     const auto dir = scratch / "model";
     std::filesystem::copy(entry.path().parent_path(), dir, std::filesystem::copy_options::recursive);
     const auto file = dir / (name + ".csg");
-    const std::string cmd = "cd " + quoted(dir) + " && openscad -o " + quoted(file) + " " + quoted(dir / entry.path().filename()) +
-                            " > " + quoted(dir / "export.log") + " 2>&1";
+    const std::string cmd = "cd " + shell_quoted(dir) + " && openscad -o " + shell_quoted(file) + " " + shell_quoted(dir / entry.path().filename()) +
+                            " > " + shell_quoted(dir / "export.log") + " 2>&1";
     if (std::system(cmd.c_str()) != 0 || !std::filesystem::exists(file))
       throw InputError(label + ": openscad could not export it to CSG (is Debian's openscad installed?)");
     return file;
@@ -65,6 +63,12 @@ LoadedProgram load_program(const ProgramSource& source, std::uint64_t seed, cons
   out.program = csg::read_program(out.file.string());
   out.postfix = csg::lower(out.program);
   return out;
+}
+
+std::string shell_quoted(const std::filesystem::path& p) {
+  std::string out = "'";
+  for (const char c : p.string()) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
 }
 
 std::filesystem::path scratch_folder(const std::string& key) {

@@ -41,4 +41,7 @@ LoadedProgram load_program(const ProgramSource& source, std::uint64_t seed, cons
 // A fresh folder for one job's files under the system's temporary folder; the caller removes it.
 std::filesystem::path scratch_folder(const std::string& key);
 
+// A path as one word of a POSIX shell command: in single quotes, each quote in it as '\''.
+std::string shell_quoted(const std::filesystem::path& p);
+
 }  // namespace bsp::experiments
