@@ -101,6 +101,8 @@ PeerResult openscad(const std::filesystem::path& program, const std::filesystem:
   const auto [code, seconds] = run_timed("openscad -o " + shell_quoted(out) + " " + shell_quoted(program) + " > " + shell_quoted(log) + " 2>&1", timeout);
   r.seconds = seconds;
   if (code == 124) return r.status = "timeout", r.note = "killed after " + std::to_string(timeout) + " s", r;
+  // An empty top-level object is a result (volume 0), though OpenSCAD exits 1 and writes no file.
+  if (slurp(log).find("Current top level object is empty") != std::string::npos) return r.note = "empty", r;
   if (code != 0 || !std::filesystem::exists(out)) return r.status = "error", r.note = first_line(slurp(log)), r;
   try {
     const Scene result = read_mesh(out.string());
@@ -108,8 +110,7 @@ PeerResult openscad(const std::filesystem::path& program, const std::filesystem:
     r.triangles = result.polygons.size();
     r.volume_rounding_bound = rounding_bound(result.polygons);
   } catch (const InputError& e) {
-    // An empty result: OpenSCAD writes no faces for an empty top-level object.
-    r.note = e.what();
+    r.status = "error", r.note = e.what();  // an OFF file bspbench cannot read
   }
   return r;
 }
