@@ -3,11 +3,11 @@
 // ExactKernel below, each a box or space and the operations of solid trees in it.
 #include "experiments/csg/evaluate.h"
 
-#include <chrono>
 #include <optional>
 
 #include "common/errors.h"
 #include "csg/shapes2d.h"
+#include "experiments/job.h"
 #include "solid/boundary.h"
 #include "solid/exact_merge.h"
 #include "solid/solid_build.h"
@@ -17,10 +17,6 @@
 namespace bsp::experiments {
 
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 SetOp set_op(StepKind kind) {
   return kind == StepKind::Union ? SetOp::Union : kind == StepKind::Intersection ? SetOp::Intersection : SetOp::Difference;
@@ -127,13 +123,13 @@ class Evaluator {
     }
     if (stack_.size() != 1) throw std::logic_error("csg: the program leaves " + std::to_string(stack_.size()) + " operands");
     std::optional<Tree> result = built(stack_.back());
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = wall_seconds();
     if (result) {
       out_.result = K::size(*result);
       boundary_ = k_.boundary(*result);
     }
     check_boundary(boundary_, k_.eps(), &out_.mesh);
-    out_.boundary_seconds = seconds_since(start);
+    out_.boundary_seconds = wall_seconds() - start;
     return result;
   }
   const LoopPool& boundary() const { return boundary_; }
@@ -189,11 +185,11 @@ class Evaluator {
       }
       std::optional<Tree> a = built(acc), b = built(next);
       MergeStats stats;
-      const auto start = std::chrono::steady_clock::now();
+      const auto start = wall_seconds();
       Tree r = k_.merge(*a, *b, set_op(kind), stats);
       k_.release(*a, r);
       k_.release(*b, r);
-      const double seconds = seconds_since(start);
+      const double seconds = wall_seconds() - start;
       cost.seconds += seconds;
       out_.merge_seconds += seconds;
       ++cost.merges;
@@ -205,7 +201,7 @@ class Evaluator {
 
   // The convex hull of the operands' points: a leaf's vertices, or a tree's boundary vertices.
   Operand hull(std::vector<Operand>& ops, CsgStepCost& cost) {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = wall_seconds();
     std::vector<Vec3> points;
     for (Operand& o : ops) {
       if (o.mesh) {
@@ -224,7 +220,7 @@ class Evaluator {
       p.source = static_cast<std::uint32_t>(polys.size());
       polys.push_back(std::move(p));
     }
-    cost.seconds = seconds_since(start);
+    cost.seconds = wall_seconds() - start;
     out_.merge_seconds += cost.seconds;
     if (polys.empty()) return {};
     return {&polys, std::nullopt, cost.node};
@@ -271,30 +267,30 @@ CsgEvaluation evaluate_program(const csg::Program& program, const csg::Postfix& 
   if (leaves.empty()) leaves = Box{{0, 0, 0}, {1, 1, 1}};  // a program of nothing: any space will do
   const Box box = solid_box(leaves, leaves);
   const csg::Postfix& truth = settings.truth ? *settings.truth : postfix;
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = wall_seconds();
   if (settings.kernel == Kernel::Float) {
     FloatKernel k{box};
     if (settings.check_inputs) check_leaves(program, postfix, settings.kernel, box, nullptr);
-    out.check_seconds = seconds_since(start);
+    out.check_seconds = wall_seconds() - start;
     Evaluator<FloatKernel> e(postfix, splitter, k, out);
     const std::optional<SolidTree> result = e.run();
-    const auto proof_start = std::chrono::steady_clock::now();
+    const auto proof_start = wall_seconds();
     if (settings.prove)
       out.check = check_program(result ? *result : empty_solid(box), e.boundary(), truth.leaf_meshes(), e.hulls(), truth.steps,
                                 settings.check);
-    out.proof_seconds = seconds_since(proof_start);
+    out.proof_seconds = wall_seconds() - proof_start;
     return out;
   }
   ExactKernel k{ExactSolidSpace::for_box(box), box, {}};
   if (settings.check_inputs) check_leaves(program, postfix, settings.kernel, box, k.space.get());
-  out.check_seconds = seconds_since(start);
+  out.check_seconds = wall_seconds() - start;
   Evaluator<ExactKernel> e(postfix, splitter, k, out);
   const std::optional<ExactSolidTree> result = e.run();
-  const auto proof_start = std::chrono::steady_clock::now();
+  const auto proof_start = wall_seconds();
   if (settings.prove)
     out.check = check_exact_program(result ? *result : ExactSolidTree{}, *k.space, k.faces, truth.leaf_meshes(), e.hulls(),
                                     truth.steps, settings.check);
-  out.proof_seconds = seconds_since(proof_start);
+  out.proof_seconds = wall_seconds() - proof_start;
   return out;
 }
 
