@@ -9,6 +9,9 @@
 //           a trim and restart before it; the operands and CGAL's copies of them included);
 //       corefine_seconds: median of CGAL PMP::corefine_and_compute_OP on the same two meshes
 //           (copies of both go in, since corefinement changes its inputs; the copies are timed);
+//       below 10^5, the same merge with MergeOptions::prune_by_bounds on: pruned (subtrees passed
+//       whole by their bounds), pruned_partition_nodes, pruned_merge_seconds and prune_speedup
+//       (unpruned / pruned time, the two alternating on the same trees),
 //       merge_vs_corefine (builds included), mesh_vs_corefine (builds and boundary included: mesh
 //           in, mesh out, as corefinement) and merge_only_vs_corefine (merge and reduce only);
 //       up to 10^4 triangles each, nef_seconds: median of CGAL's Nef polyhedra doing the same
@@ -65,6 +68,7 @@ constexpr benchmark::IterationCount kSlowRuns = 3;  // iterations of runs that t
 constexpr double kMeshOffset = 0.05;                // of the mesh's bounding box, per axis
 constexpr std::uint64_t kNefMaxN = 10000;           // Nef polyhedra take about a second at 10^4
 constexpr int kNefRepeats = 3;
+constexpr int kPruneRepeats = 3;
 
 using Clock = std::chrono::steady_clock;
 
@@ -133,6 +137,28 @@ double nef_seconds(const Operands& o, SetOp op, double& volume) {
   return measured[key].first;
 }
 
+// The same merge with pruning by bounds (MergeOptions) on the same trees: what pruning changes.
+// Below kLargeN only, where both run in seconds.
+// Both merges alternate on the same trees, so neither is favoured by warm caches.
+void record_pruned(benchmark::State& state, const Operands& o, const std::string& h, SetOp op) {
+  auto splitter = make_splitter(h, {}, kSeed);
+  const SolidBuild a = build_solid(o.a, *splitter, o.box);
+  const SolidBuild b = build_solid(o.b, *splitter, o.box);
+  std::vector<double> times, pruned_times;  // times: unpruned, as merge/ runs
+  MergeStats stats;
+  for (int i = 0; i < kPruneRepeats; ++i) {
+    for (const bool prune : {true, false}) {
+      const auto start = Clock::now();
+      const SolidTree r = merge(a.solid, b.solid, op, prune ? &stats : nullptr, MergeOptions{.prune_by_bounds = prune});
+      (prune ? pruned_times : times).push_back(seconds_since(start));
+    }
+  }
+  state.counters["pruned_merge_seconds"] = median(pruned_times);
+  state.counters["prune_speedup"] = median(times) / median(pruned_times);
+  state.counters["pruned"] = static_cast<double>(stats.pruned);
+  state.counters["pruned_partition_nodes"] = static_cast<double>(stats.partition_nodes);
+}
+
 void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp op) {
   std::vector<double> builds, merges, boundaries;
   SolidTree result;
@@ -184,6 +210,7 @@ void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp o
   state.counters["partition_nodes"] = static_cast<double>(stats.partition_nodes);
   state.counters["shp_splits"] = static_cast<double>(stats.shp_splits);
   state.counters["operand_nodes"] = static_cast<double>(operand_nodes);
+  if (std::max(o->a.size(), o->b.size()) < kLargeN) record_pruned(state, *o, h, op);
   if (std::max(o->a.size(), o->b.size()) <= kNefMaxN) {
     double nef_volume = 0;
     const double nef = nef_seconds(*o, op, nef_volume);

@@ -131,6 +131,34 @@ TEST(ExactMerge, OverlappingSpheresEveryOperationAndHeuristicMatchCgal) {
   }
 }
 
+// Pruning by bounds passes a subtree whose sub-hyperplanes lie on one side of h(t1) whole, and
+// finds its leaf on the other side down one path: the tree after reduce() is the one the full
+// partition makes, node for node, and the invariants and CGAL's points agree. A wrong leaf there
+// (the other label, or the subtree on the wrong side) changes the tree.
+TEST(ExactMerge, PruningByBoundsMakesTheSameTree) {
+  ExactPair p(scene("sphere", {{"n", "600"}}), scene("torus", {{"n", "600"}, {"x", "0.6"}, {"seed", "4"}}));
+  for (const std::string h : {"first", "halving", "octree"}) {
+    const ExactSolidTree a = p.solid(p.a, h), b = p.solid(p.b, h);
+    for (SetOp op : kOps) {
+      MergeStats full, pruned;
+      const ExactSolidTree r = merge(a, b, *p.space, op, &full);
+      const ExactSolidTree q = merge(a, b, *p.space, op, &pruned, MergeOptions{.prune_by_bounds = true});
+      EXPECT_EQ(full.pruned, 0u);
+      EXPECT_GT(pruned.pruned, 0u) << h << " " << set_op_name(op);
+      EXPECT_EQ(pruned.partition_nodes, full.partition_nodes) << h << " " << set_op_name(op);
+      EXPECT_EQ(check_exact_solid(q, *p.space), "") << h << " " << set_op_name(op);
+      ASSERT_EQ(q.nodes.size(), r.nodes.size()) << h << " " << set_op_name(op);
+      EXPECT_EQ(q.root, r.root);
+      for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+        EXPECT_EQ(q.nodes[i].plane, r.nodes[i].plane);
+        EXPECT_EQ(q.nodes[i].front, r.nodes[i].front);
+        EXPECT_EQ(q.nodes[i].back, r.nodes[i].back);
+      }
+      EXPECT_EQ(prove_points(q, p, op, 1000).mismatches, 0) << h << " " << set_op_name(op);
+    }
+  }
+}
+
 TEST(ExactMerge, CoplanarFacesOfTouchingBoxes) {
   // The boxes share the plane x = 0 over a square: partitionTree's coplanar case, both facings,
   // decided by pooled index.

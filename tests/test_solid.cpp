@@ -140,6 +140,28 @@ TEST(SolidTree, OctreeSolidIsShallowAndOperandsShareItsTopPlanes) {
   EXPECT_EQ(c.boundary.edges.border_edges, 0u);
 }
 
+// The float kernel's pruning by bounds: a subtree farther than plane_eps from h(t1) goes whole, its
+// leaf beyond found down one path; the reduced tree is the full partition's, node for node.
+TEST(Merge, PruningByBoundsMakesTheSameTree) {
+  const Pair p = make_pair_of("sphere", {{"n", "600"}}, {{"n", "600"}, {"x", "0.5"}, {"scale", "0.9"}});
+  for (const std::string h : {"first", "halving", "octree"}) {
+    const SolidTree a = solid_of(p.a, h, p.box), b = solid_of(p.b, h, p.box);
+    for (SetOp op : kOps) {
+      MergeStats full, pruned;
+      const SolidTree r = merge(a, b, op, &full);
+      const SolidTree q = merge(a, b, op, &pruned, MergeOptions{.prune_by_bounds = true});
+      EXPECT_GT(pruned.pruned, 0u) << h << " " << set_op_name(op);
+      ASSERT_EQ(q.nodes.size(), r.nodes.size()) << h << " " << set_op_name(op);
+      for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+        EXPECT_EQ(q.nodes[i].plane, r.nodes[i].plane);
+        EXPECT_EQ(q.nodes[i].front, r.nodes[i].front);
+        EXPECT_EQ(q.nodes[i].back, r.nodes[i].back);
+      }
+      EXPECT_EQ(prove(q, p, op, 1000).mismatches, 0u) << h << " " << set_op_name(op);
+    }
+  }
+}
+
 TEST(SolidInput, OpenOrMisorientedMeshesAreRefusedWithTheCount) {
   auto box = solid_scene("box", {{"seed", "0"}});
   EXPECT_NO_THROW(require_closed_solid(box, 1e-9, "box"));

@@ -132,6 +132,7 @@ int run(Args& args) {
   const auto out_path = args.option("--out");
   const std::string kernel_text = args.option("--kernel").value_or("exact");
   const std::string engine = args.option("--engine").value_or("bspbench");
+  const std::string prune = args.option("--prune").value_or("off");
   std::vector<std::string> peers;
   if (const auto list = args.option("--peers")) peers = split_list(*list);
   const double timeout = args.real("--peer-timeout").value_or(experiments::kDefaultPeerTimeout);
@@ -142,6 +143,8 @@ int run(Args& args) {
   const auto kernel = kernel_named(kernel_text);
   if (!kernel) throw UsageError("--kernel must be exact or float, not '" + kernel_text + "'");
   settings.kernel = *kernel;
+  if (prune != "on" && prune != "off") throw UsageError("--prune must be on or off, not '" + prune + "'");
+  settings.merge.prune_by_bounds = prune == "on";
   if (out_path && !out_path->ends_with(".obj") && !out_path->ends_with(".off"))
     throw UsageError("--out must name a .obj or .off file, not '" + *out_path + "'");
 
@@ -187,8 +190,8 @@ int run(Args& args) {
 
 Command csg_command() {
   return {"csg",
-          "FILE.csg|openscad:NAME|NAME:k=K [--heuristic H] [--param k=v]... [--seed S] [--kernel exact|float] [--points N] "
-          "[--peers cgal,openscad,manifold] [--peer-timeout SECONDS] [--engine bspbench|cgal] [--out RESULT.obj|.off] [--json]",
+          "FILE.csg|openscad:NAME|NAME:k=K [--heuristic H] [--param k=v]... [--seed S] [--kernel exact|float] [--prune on|off] "
+          "[--points N] [--peers cgal,openscad,manifold] [--peer-timeout SECONDS] [--engine bspbench|cgal] [--out RESULT.obj|.off] [--json]",
           "evaluate an OpenSCAD CSG program by merging solid BSP trees, proved against CGAL step by step", run,
           concat({{{"FILE.csg", "a program in OpenSCAD's CSG format (openscad -o FILE.csg MODEL.scad)"},
                    {"openscad:NAME", "an example model OpenSCAD ships (/usr/share/openscad/examples), exported by openscad"},
@@ -200,6 +203,7 @@ Command csg_command() {
                    {"--param k=v", "a heuristic parameter; repeatable"},
                    {"--seed S", "the heuristic's seed and the check's points' (default 1)"},
                    {"--kernel K", "exact (default: every leaf snapped to one grid, merged exactly, volumes equal as rationals) or float"},
+                   {"--prune on|off", "merging passes a subtree whose bounds lie on one side of a plane whole (default off: it visits the same nodes, docs/solids.md)"},
                    {"--points N", "points classified against the program's exact answer (default 10000)"},
                    {"--out RESULT", "write the result's boundary, welded, as .obj or .off (atomically)"}},
                   kJsonOption})};

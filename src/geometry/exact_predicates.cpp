@@ -238,6 +238,27 @@ FilterBox filter_box(const VertexCofactors* vertices, std::size_t count) {
   return box;
 }
 
+FilterBox united(const FilterBox& a, const FilterBox& b) {
+  constexpr double u = 0x1p-53;
+  FilterBox box;
+  if (!a.bounded || !b.bounded) return box;
+  for (int j = 0; j < 3; ++j) {
+    const double lo = std::min(a.centre[j] - a.half[j], b.centre[j] - b.half[j]);
+    const double hi = std::max(a.centre[j] + a.half[j], b.centre[j] + b.half[j]);
+    const double magnitude = std::max(std::abs(a.centre[j]) + a.half[j], std::abs(b.centre[j]) + b.half[j]);
+    box.centre[j] = 0.5 * (lo + hi);
+    box.half[j] = (std::max(hi - box.centre[j], box.centre[j] - lo) + 8 * u * magnitude) * (1 + 0x1p-48);
+    if (!std::isfinite(box.centre[j]) || !std::isfinite(box.half[j])) return box;
+  }
+  box.bounded = true;
+  return box;
+}
+
+int box_side(const FilterBox& b, const PlaneApprox& p) {
+  const detail::MaybeSign s = detail::filtered_box_side(b, p);
+  return s.decided ? s.sign : 0;
+}
+
 std::optional<Vec3> vertex_position(const GridPlane& p1, const GridPlane& p2, const GridPlane& p3, const Grid& grid) {
   const Matrix<Exact, 3> n = normals<Exact>(p1, p2, p3, to_exact);
   const Exact det = det3<Exact, false>(n);

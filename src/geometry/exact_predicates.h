@@ -114,6 +114,12 @@ struct FilterBox {
   bool bounded = false;
 };
 FilterBox filter_box(const VertexCofactors* vertices, std::size_t count);
+// A box holding both boxes: their bounds as lo and hi, widened by the rounding of computing them
+// (8u of each coordinate's magnitude) before filter_box's own 2^-48. Unbounded when either is.
+FilterBox united(const FilterBox& a, const FilterBox& b);
+// Where a box lies against a plane (filtered_box_side): +1 wholly in front, -1 wholly behind, 0
+// undecided.
+int box_side(const FilterBox& b, const PlaneApprox& p);
 
 // The stages on their own, for tests: a filter result is `decided` only when its bound allows.
 namespace detail {

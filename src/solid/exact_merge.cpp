@@ -98,8 +98,9 @@ class MadeShps {
 // nodes' sub-hyperplanes (MadeShps).
 class ExactPartitioner {
  public:
-  ExactPartitioner(ExactSolidTree& work, ExactSolidSpace& space, MergeStats& stats, MadeShps& made)
-      : w_(work), store_(space.shps()), stats_(stats), made_(made) {}
+  ExactPartitioner(ExactSolidTree& work, ExactSolidSpace& space, MergeStats& stats, MadeShps& made,
+                   MergeOptions options)
+      : w_(work), store_(space.shps()), stats_(stats), made_(made), options_(options) {}
 
   struct Parts {
     Ref plus, minus;
@@ -151,6 +152,14 @@ class ExactPartitioner {
       frames_.pop_back();
       return;
     }
+    if (const int side = bounds_side(f.t, h); side != 0) {  // T wholly on one side: no copy of its path
+      ++stats_.pruned;
+      const Ref leaf = leaf_beyond(f.t, f.shp_h);
+      done_with(f);
+      parts_.push_back(side > 0 ? Parts{f.t, leaf} : Parts{leaf, f.t});
+      frames_.pop_back();
+      return;
+    }
     const Frame child{0, f.shp_h, f.owned, Kind::Pending};
     f.owned = false;  // handed down with the piece
     switch (store_.classify(f.shp_h, node.plane)) {
@@ -175,6 +184,53 @@ class ExactPartitioner {
   }
 
   Ref node(std::uint32_t plane, std::uint32_t shp, Ref front, Ref back) { return w_.add_node(plane, shp, front, back); }
+
+  int bounds_side(Ref t, std::uint32_t h) {
+    return options_.prune_by_bounds ? box_side(subtree_box(t), store_.planes().approx(h)) : 0;
+  }
+
+  // The box of subtree t's sub-hyperplanes, each node's computed once, children first.
+  FilterBox subtree_box(Ref t) {
+    if (boxes_.size() < w_.nodes.size()) {
+      boxes_.resize(w_.nodes.size());
+      box_known_.resize(w_.nodes.size(), false);
+    }
+    stack_.assign(1, t);
+    while (!stack_.empty()) {
+      const Ref r = stack_.back();
+      if (box_known_[r]) {  // a subtree two parents share
+        stack_.pop_back();
+        continue;
+      }
+      const ExactSolidNode n = w_.nodes[r];
+      const bool front_ready = is_leaf(n.front) || box_known_[n.front];
+      const bool back_ready = is_leaf(n.back) || box_known_[n.back];
+      if (!front_ready) stack_.push_back(n.front);
+      if (!back_ready) stack_.push_back(n.back);
+      if (!front_ready || !back_ready) continue;
+      FilterBox b = store_.box(w_.shp[r]);
+      for (const Ref c : {n.front, n.back})
+        if (!is_leaf(c)) b = united(b, boxes_[c]);
+      boxes_[r] = b;
+      box_known_[r] = true;
+      stack_.pop_back();
+    }
+    return boxes_[t];
+  }
+
+  // The leaf of subtree t on the side of h(t1) where t has no sub-hyperplane: shp(t1) ∩ r(t) lies
+  // there, in one child's region at each node. It cannot touch h(v) of a node v on the way: the
+  // touching point would lie in shp(v) and on h(t1), which shp(v)'s box avoids.
+  Ref leaf_beyond(Ref t, std::uint32_t shp_h) {
+    for (bool counted = true; !is_leaf(t); counted = false) {
+      if (!counted) ++stats_.partition_nodes;  // t itself was counted by descend()
+      const ExactSolidNode n = w_.nodes[t];
+      const Side s = store_.classify(shp_h, n.plane);
+      if (s != Side::Front && s != Side::Back) broken("shp(t1) meets a node whose subtree lies on one side of h(t1)");
+      t = s == Side::Front ? n.front : n.back;
+    }
+    return t;
+  }
 
   // T's parts. A part whose two children are one leaf is that leaf (what reduce() would make of
   // it), and the part of shp(T) it would have held is never computed. T itself is garbage
@@ -238,14 +294,19 @@ class ExactPartitioner {
   ExactFragments& store_;
   MergeStats& stats_;
   MadeShps& made_;
+  const MergeOptions options_;
+  std::vector<FilterBox> boxes_;  // parallel to the work nodes (exact_merge.h), filled on demand
+  std::vector<bool> box_known_;
+  std::vector<Ref> stack_;
   std::vector<Frame> frames_;
   std::vector<Parts> parts_;
 };
 
 class ExactMerger {
  public:
-  ExactMerger(ExactSolidTree& work, ExactSolidSpace& space, const CellTable& table, MergeStats& stats, MadeShps& made)
-      : w_(work), table_(table), stats_(stats), made_(made), partitioner_(work, space, stats, made) {}
+  ExactMerger(ExactSolidTree& work, ExactSolidSpace& space, const CellTable& table, MergeStats& stats, MadeShps& made,
+              MergeOptions options)
+      : w_(work), table_(table), stats_(stats), made_(made), partitioner_(work, space, stats, made, options) {}
 
   Ref merge(Ref a_root, Ref b_root) {
     struct Frame {
@@ -380,7 +441,7 @@ ExactSolidTree reduce(const ExactSolidTree& solid) {
 }
 
 ExactSolidTree merge_with_table(const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space,
-                                const CellTable& table, MergeStats* stats) {
+                                const CellTable& table, MergeStats* stats, MergeOptions options) {
   MergeStats local;
   MergeStats& st = stats ? *stats : local;
   st = {};
@@ -388,7 +449,7 @@ ExactSolidTree merge_with_table(const ExactSolidTree& a, const ExactSolidTree& b
   Ref b_root = kOut;
   ExactSolidTree work = combined(a, b, b_root);
   MadeShps made(a, b, space.shps(), static_cast<Ref>(work.nodes.size()));
-  work.root = ExactMerger(work, space, table, st, made).merge(a.root, b_root);
+  work.root = ExactMerger(work, space, table, st, made, options).merge(a.root, b_root);
   st.merge_seconds = seconds_since(start);
   st.before = solid_size(work);
   const auto reduce_start = Clock::now();
@@ -414,8 +475,8 @@ void discard(const ExactSolidTree& result, const ExactSolidTree& a, const ExactS
 }
 
 ExactSolidTree merge(const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space, SetOp op,
-                     MergeStats* stats) {
-  return merge_with_table(a, b, space, cell_table(op), stats);
+                     MergeStats* stats, MergeOptions options) {
+  return merge_with_table(a, b, space, cell_table(op), stats, options);
 }
 
 }  // namespace bsp

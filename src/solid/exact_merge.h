@@ -20,10 +20,12 @@ namespace bsp {
 
 // A op B, both of `space`. The result is reduced (every subtree of one label collapsed) and of the
 // same space; the sub-hyperplanes it does not use that the merge made are released.
+// Pruning by bounds as merge.h's, with the fragments' certified boxes (exact_predicates.h): a
+// subtree is passed whole only when the filter proves its box strictly on one side.
 ExactSolidTree merge(const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space, SetOp op,
-                     MergeStats* stats = nullptr);
+                     MergeStats* stats = nullptr, MergeOptions options = {});
 ExactSolidTree merge_with_table(const ExactSolidTree& a, const ExactSolidTree& b, ExactSolidSpace& space,
-                                const CellTable& table, MergeStats* stats = nullptr);
+                                const CellTable& table, MergeStats* stats = nullptr, MergeOptions options = {});
 
 // Releases the sub-hyperplanes of a merge's result that neither operand holds: for a result that is
 // no longer needed (timing repeats a merge in one space). The result must not be used afterwards.

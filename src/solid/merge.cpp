@@ -1,6 +1,7 @@
 #include "solid/merge.h"
 
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -66,8 +67,8 @@ SolidTree combined(const SolidTree& a, const SolidTree& b, Ref& b_root) {
 
 class Merger {
  public:
-  Merger(SolidTree& work, const CellTable& table, MergeStats& stats)
-      : w_(work), table_(table), stats_(stats), partitioner_(work, stats) {}
+  Merger(SolidTree& work, const CellTable& table, MergeStats& stats, MergeOptions options)
+      : w_(work), table_(table), stats_(stats), partitioner_(work, stats, options) {}
 
   Ref merge(Ref a_root, Ref b_root);
 
@@ -205,7 +206,66 @@ RegionSide region_side(const SolidTree& s, Ref v, const std::vector<Plane>& path
 
 }  // namespace
 
-Partitioner::Partitioner(SolidTree& work, MergeStats& stats) : w_(work), stats_(stats), eps_(work.tol.plane_eps) {}
+Partitioner::Partitioner(SolidTree& work, MergeStats& stats, MergeOptions options)
+    : w_(work), stats_(stats), eps_(work.tol.plane_eps), options_(options) {}
+
+const Box& Partitioner::subtree_box(Ref t) {
+  if (boxes_.size() < w_.nodes.size()) {
+    boxes_.resize(w_.nodes.size());
+    box_known_.resize(w_.nodes.size(), false);
+  }
+  stack_.assign(1, t);
+  while (!stack_.empty()) {
+    const Ref r = stack_.back();
+    if (box_known_[r]) {  // a subtree two parents share
+      stack_.pop_back();
+      continue;
+    }
+    const SolidNode n = w_.nodes[r];
+    const bool front_ready = is_leaf(n.front) || box_known_[n.front];
+    const bool back_ready = is_leaf(n.back) || box_known_[n.back];
+    if (!front_ready) stack_.push_back(n.front);
+    if (!back_ready) stack_.push_back(n.back);
+    if (!front_ready || !back_ready) continue;
+    Box b;
+    for (const Vec3& p : w_.loops[w_.shp[r]]) b.add(p);
+    for (const Ref c : {n.front, n.back})
+      if (!is_leaf(c)) b.add(boxes_[c]);
+    boxes_[r] = b;
+    box_known_[r] = true;
+    stack_.pop_back();
+  }
+  return boxes_[t];
+}
+
+int Partitioner::bounds_side(Ref t, const Plane& h) {
+  if (!options_.prune_by_bounds) return 0;
+  const Box& b = subtree_box(t);
+  if (b.empty()) return 0;  // no sub-hyperplane left: reduce() decides where such nodes go
+  const Vec3 centre = (b.lo + b.hi) * 0.5, half = (b.hi - b.lo) * 0.5;
+  const double v = h.distance(centre);
+  const double r = std::abs(h.n.x) * half.x + std::abs(h.n.y) * half.y + std::abs(h.n.z) * half.z;
+  if (v - r > eps_) return 1;
+  if (v + r < -eps_) return -1;
+  return 0;
+}
+
+// As the exact kernel's, but the tolerance may call shp(t1) coplanar with, or spanning, a node's
+// plane within plane_eps of it: then the subtree is partitioned as usual.
+Ref Partitioner::leaf_beyond(Ref t, std::uint32_t shp_h, const Plane& h, bool& ok) {
+  ok = true;
+  for (bool counted = true; !is_leaf(t); counted = false) {
+    if (!counted) ++stats_.partition_nodes;  // t itself was counted by partition_descend()
+    const SolidNode& n = w_.nodes[t];
+    const Side s = classify_loop(w_.loops[shp_h], h, n.plane, eps_);
+    if (s != Side::Front && s != Side::Back) {
+      ok = false;
+      return kOut;
+    }
+    t = n.child(s == Side::Front);
+  }
+  return t;
+}
 
 Ref Partitioner::node(const Plane& plane, std::uint32_t shp, Ref front, Ref back) {
   if (collapses(front, back)) return front;
@@ -240,6 +300,16 @@ void Partitioner::partition_descend(std::size_t top, const Plane& h) {
   }
   ++stats_.partition_nodes;
   const SolidNode node = w_.nodes[f.t];
+  if (const int side = bounds_side(f.t, h); side != 0) {  // T wholly on one side: no copy of its path
+    bool ok = false;
+    const Ref leaf = leaf_beyond(f.t, f.shp_h, h, ok);
+    if (ok) {
+      ++stats_.pruned;
+      frames_.pop_back();
+      parts_.push_back(side > 0 ? Parts{f.t, leaf} : Parts{leaf, f.t});
+      return;
+    }
+  }
   switch (classify_loop(w_.loops[f.shp_h], h, node.plane, eps_)) {
     case Side::Coplanar:
       // h(t1) = h(T) inside r(T): T's two sides are h(t1)'s two sides.
@@ -337,7 +407,8 @@ SolidTree reduce(const SolidTree& solid) {
   return emit_preorder(crossing, root, [](Ref r, const std::vector<Plane>&) { return r; });
 }
 
-SolidTree merge_with_table(const SolidTree& a, const SolidTree& b, const CellTable& table, MergeStats* stats) {
+SolidTree merge_with_table(const SolidTree& a, const SolidTree& b, const CellTable& table, MergeStats* stats,
+                           MergeOptions options) {
   if (!(a.box.lo == b.box.lo && a.box.hi == b.box.hi))
     throw std::invalid_argument("merge: the operands were built in different boxes (see solid_box)");
   MergeStats local;
@@ -348,7 +419,7 @@ SolidTree merge_with_table(const SolidTree& a, const SolidTree& b, const CellTab
   SolidTree work = combined(a, b, b_root);
   work.box = a.box;
   work.tol = a.tol;
-  work.root = Merger(work, table, st).merge(a.root, b_root);
+  work.root = Merger(work, table, st, options).merge(a.root, b_root);
   st.merge_seconds = seconds_since(start);
   st.before = solid_size(work);
   const auto reduce_start = Clock::now();
@@ -358,8 +429,8 @@ SolidTree merge_with_table(const SolidTree& a, const SolidTree& b, const CellTab
   return result;
 }
 
-SolidTree merge(const SolidTree& a, const SolidTree& b, SetOp op, MergeStats* stats) {
-  return merge_with_table(a, b, cell_table(op), stats);
+SolidTree merge(const SolidTree& a, const SolidTree& b, SetOp op, MergeStats* stats, MergeOptions options) {
+  return merge_with_table(a, b, cell_table(op), stats, options);
 }
 
 }  // namespace bsp

@@ -40,6 +40,10 @@ struct MergeStats {
   std::uint64_t merge_nodes = 0;      // merge steps (pairs of a node of A and a part of B)
   std::uint64_t cell_ops = 0;         // treeOpCell calls
   std::uint64_t complement_nodes = 0; // nodes copied to complement a subtree
+  // Subtrees of T passed whole to one side of h(t1) because the box of their sub-hyperplanes lies
+  // there: the other side is the one leaf the subtree has there, found down one path, and nothing
+  // below is partitioned or copied (MergeOptions::prune_by_bounds).
+  std::uint64_t pruned = 0;
   // Places where the tolerance decisions disagreed with each other (shp(t1) spanning h(T) while
   // shp(T) did not span h(t1), or the reverse): resolved by the farther side; the region involved
   // is within plane_eps of both planes.
@@ -48,6 +52,18 @@ struct MergeStats {
   SolidSize after;   // after reduce()
   double merge_seconds = 0;
   double reduce_seconds = 0;
+};
+
+// Pruning by bounds [NehringWirxel2021; BernsteinFussell2009: merge only where the operands meet]:
+// a subtree of T whose sub-hyperplanes all lie on one side of h(t1) (their box, a side array the
+// partition fills as it meets nodes, misses h(t1)) has no node on the other side, so its part
+// there is one leaf, found down one path, and the subtree goes to its side whole instead of as
+// copies of the nodes on that path. Off by default: partitionTree already descends only where
+// shp(t1) reaches, and a sub-hyperplane spans its node's region, so pruning visits exactly the
+// nodes it would have (MergeStats::partition_nodes is equal on every measured pair) and computing
+// the boxes costs more than the copies it saves (docs/solids.md).
+struct MergeOptions {
+  bool prune_by_bounds = false;
 };
 
 // partitionTree (§4.1) on its own: the parts of tree T (a subtree of `work`) in front of and behind
@@ -59,7 +75,7 @@ class Partitioner {
   // A part whose two children are the same leaf is that leaf, so a part holding nothing of the
   // solid is OUT at once (what view-volume culling needs to skip a side), and merging never
   // partitions, or cuts sub-hyperplanes for, what reduce() would remove.
-  Partitioner(SolidTree& work, MergeStats& stats);
+  Partitioner(SolidTree& work, MergeStats& stats, MergeOptions options = {});
   struct Parts {
     Ref plus, minus;  // T+ and T-
   };
@@ -75,6 +91,13 @@ class Partitioner {
     Kind kind;
   };
   void partition_descend(std::size_t top, const Plane& h);
+  // Where the box of subtree t's sub-hyperplanes lies against h: +1 farther than plane_eps in
+  // front, -1 behind, 0 otherwise (or when pruning is off).
+  int bounds_side(Ref t, const Plane& h);
+  const Box& subtree_box(Ref t);
+  // The leaf of subtree t on the side of h it has no sub-hyperplane on, reached by where shp_h lies
+  // against each node's plane; kOut with ok false when a tolerance decision stops the walk.
+  Ref leaf_beyond(Ref t, std::uint32_t shp_h, const Plane& h, bool& ok);
   Parts partition_combine(const PartFrame& f, const Plane& h);
   bool shp_in_front(Ref t, const Plane& h);
   static bool collapses(Ref front, Ref back) { return is_leaf(front) && front == back; }
@@ -83,16 +106,21 @@ class Partitioner {
   SolidTree& w_;
   MergeStats& stats_;
   const double eps_;
+  const MergeOptions options_;
+  std::vector<Box> boxes_;       // parallel to work nodes: the box of each subtree's sub-hyperplanes
+  std::vector<bool> box_known_;  // set once a box is computed (a node's subtree never changes)
+  std::vector<Ref> stack_;
   std::vector<PartFrame> frames_;
   std::vector<Parts> parts_;
   std::vector<Vec3> front_, back_;
 };
 
 // A op B. Both operands must have been built in the same box (solid_box). The result is reduced.
-SolidTree merge(const SolidTree& a, const SolidTree& b, SetOp op, MergeStats* stats = nullptr);
+SolidTree merge(const SolidTree& a, const SolidTree& b, SetOp op, MergeStats* stats = nullptr,
+                MergeOptions options = {});
 // The same with an explicit table: tests plant a wrong row and show the checks catch it.
 SolidTree merge_with_table(const SolidTree& a, const SolidTree& b, const CellTable& table,
-                           MergeStats* stats = nullptr);
+                           MergeStats* stats = nullptr, MergeOptions options = {});
 
 // Collapses every subtree whose leaves all carry one label into that leaf, removes nodes whose
 // plane no longer crosses their region (an empty sub-hyperplane: the child on the region's side

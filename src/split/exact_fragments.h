@@ -93,6 +93,9 @@ class ExactFragments {
 
   // The fragment's side of pooled plane `plane`, exactly.
   Side classify(std::uint32_t id, std::uint32_t plane) const;
+  // A box certainly holding the fragment's exact vertices (exact_predicates.h), unbounded when the
+  // filter could not bound one of them.
+  FilterBox box(std::uint32_t id) const;
   // Counts of ids on each side of each plane, added to out[j] for planes[j] (SideCounts).
   void count_sides(std::span<const std::uint32_t> ids, std::span<const std::uint32_t> planes,
                    std::span<SideCounts> out) const;
@@ -136,7 +139,6 @@ class ExactFragments {
   static constexpr PlaneRef kPooled = PlanePolygonSet::kPooled;
   GridPlane plane_of(PlaneRef r) const { return (r & kPooled) ? planes_[r & ~kPooled] : own_[r]; }
   PlaneApprox approx_of(PlaneRef r) const { return (r & kPooled) ? planes_.approx(r & ~kPooled) : own_approx_[r]; }
-  FilterBox box(std::uint32_t id) const;
 
   // Side of vertex i of fragment id of pooled plane `pooled` (`plane`, `approx`): +1, -1 or 0.
   int vertex_side(std::uint32_t id, std::size_t i, std::uint32_t pooled, const GridPlane& plane,

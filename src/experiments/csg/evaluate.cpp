@@ -56,7 +56,8 @@ struct FloatKernel {
     dropped += b.build.dropped_input;
     return std::move(b.solid);
   }
-  Tree merge(const Tree& a, const Tree& b, SetOp op, MergeStats& stats) { return bsp::merge(a, b, op, &stats); }
+  MergeOptions options;
+  Tree merge(const Tree& a, const Tree& b, SetOp op, MergeStats& stats) { return bsp::merge(a, b, op, &stats, options); }
   void release(const Tree&, const Tree&) {}  // float trees own their geometry
   static SolidSize size(const Tree& t) { return solid_size(t); }
   LoopPool boundary(const Tree& t) { return solid_boundary(t); }
@@ -77,7 +78,10 @@ struct ExactKernel {
     dropped += b.build.dropped_input;
     return std::move(b.solid);
   }
-  Tree merge(const Tree& a, const Tree& b, SetOp op, MergeStats& stats) { return bsp::merge(a, b, *space, op, &stats); }
+  MergeOptions options;
+  Tree merge(const Tree& a, const Tree& b, SetOp op, MergeStats& stats) {
+    return bsp::merge(a, b, *space, op, &stats, options);
+  }
   // The operands' sub-hyperplanes the result does not use go back to the space's store, so memory
   // follows the live trees, not the program's length.
   void release(const Tree& operand, const Tree& result) { discard(operand, result, Tree{}, *space); }
@@ -269,7 +273,7 @@ CsgEvaluation evaluate_program(const csg::Program& program, const csg::Postfix& 
   const csg::Postfix& truth = settings.truth ? *settings.truth : postfix;
   const auto start = wall_seconds();
   if (settings.kernel == Kernel::Float) {
-    FloatKernel k{box};
+    FloatKernel k{box, settings.merge};
     if (settings.check_inputs) check_leaves(program, postfix, settings.kernel, box, nullptr);
     out.check_seconds = wall_seconds() - start;
     Evaluator<FloatKernel> e(postfix, splitter, k, out);
@@ -281,7 +285,7 @@ CsgEvaluation evaluate_program(const csg::Program& program, const csg::Postfix& 
     out.proof_seconds = wall_seconds() - proof_start;
     return out;
   }
-  ExactKernel k{ExactSolidSpace::for_box(box), box, {}};
+  ExactKernel k{ExactSolidSpace::for_box(box), box, {}, settings.merge};
   if (settings.check_inputs) check_leaves(program, postfix, settings.kernel, box, k.space.get());
   out.check_seconds = wall_seconds() - start;
   Evaluator<ExactKernel> e(postfix, splitter, k, out);

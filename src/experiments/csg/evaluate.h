@@ -51,6 +51,7 @@ struct CsgEvaluation {
 
 struct CsgSettings {
   Kernel kernel = Kernel::Exact;
+  MergeOptions merge;  // pruning by bounds (merge.h)
   SolidCheckSettings check;
   bool prove = true;
   // Prove every leaf a closed solid free of self-intersections first; repeated evaluations of
