@@ -33,8 +33,8 @@
 //
 // Which heuristics run where: chains (first and the autopartitions on a convex sphere) make merging
 // quadratic in time and memory (crystal's 10^5-sphere union ran out of 24 GB), and naylor's build
-// on a 10^4 sphere takes seconds; so 10^5 runs halving and octree only, 10^6 (asked for with
-// --bsp_sizes) octree only, without the kernel comparison, and naylor stops at 10^4.
+// on a 10^4 sphere takes seconds; so 10^5 runs halving, octree and sah only, 10^6 (asked for with
+// --bsp_sizes) octree and sah only, without the kernel comparison, and naylor stops at 10^4.
 // Select with --bsp_heuristics and --bsp_sizes (bench_common.h), e.g.
 //   build/bench/bspbench_bench_merge --bsp_sizes=10000 --bsp_heuristics=halving
 //   build/bench/bspbench_bench_merge --bsp_sizes=1000000 --bsp_heuristics=octree
@@ -61,8 +61,8 @@ namespace bsp::bench {
 namespace {
 
 constexpr int kReferenceRepeats = 5;
-constexpr std::uint64_t kLargeN = 100000;     // from here, halving and octree only
-constexpr std::uint64_t kHugeN = 1000000;     // from here, octree only, and no kernel comparison
+constexpr std::uint64_t kLargeN = 100000;     // from here, halving, octree and sah only
+constexpr std::uint64_t kHugeN = 1000000;     // from here, octree and sah only, and no kernel comparison
 constexpr std::uint64_t kNaylorMaxN = 10000;
 constexpr benchmark::IterationCount kSlowRuns = 3;  // iterations of runs that take seconds each
 constexpr double kMeshOffset = 0.05;                // of the mesh's bounding box, per axis
@@ -253,8 +253,8 @@ void bm_kernel_merge(benchmark::State& state, const Operands* o, std::string h, 
 }
 
 bool runs_at(const std::string& h, std::uint64_t n) {
-  if (n >= kHugeN) return h == "octree";
-  if (n >= kLargeN) return h == "halving" || h == "octree";
+  if (n >= kHugeN) return h == "octree" || h == "sah";
+  if (n >= kLargeN) return h == "halving" || h == "octree" || h == "sah";
   return h != "naylor" || n <= kNaylorMaxN;
 }
 
@@ -293,7 +293,7 @@ void register_all(const Selection& sel) {
 int main(int argc, char** argv) {
   try {
     const auto sel =
-        bsp::bench::take_selection(argc, argv, {{}, {"first", "crystal", "halving", "naylor", "octree"}, {1000, 10000, 100000}});
+        bsp::bench::take_selection(argc, argv, {{}, {"first", "crystal", "halving", "naylor", "octree", "sah"}, {1000, 10000, 100000}});
     bsp::bench::register_all(sel);
     return bsp::bench::run_benchmarks(argc, argv, "bspbench_bench_merge");
   } catch (const std::exception& e) {

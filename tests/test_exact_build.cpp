@@ -45,7 +45,7 @@ void expect_valid(const ExactTree& t, const std::string& what) {
 TEST(ExactBuild, EveryKindOfHeuristicMakesTreesWhoseInvariantsHoldExactly) {
   for (const char* scene : {"random-triangles", "near-degenerate", "coplanar-heavy", "cyclic-overlap"}) {
     const Scene s = make_scene(scene, {{"n", "150"}});
-    for (const char* heuristic : {"first", "random", "crystal", "naylor", "halving", "octree", "min-relation"}) {
+    for (const char* heuristic : {"first", "random", "crystal", "naylor", "halving", "octree", "sah", "min-relation"}) {
       const ExactTree t = build_exact(s.polygons, heuristic);
       expect_valid(t, std::string(scene) + " " + heuristic);
       EXPECT_EQ(t.tree.stats.dropped_slivers, 0u);

@@ -117,7 +117,7 @@ TEST(ExactSolidTree, EveryHeuristicBuildsASphereThatClassifiesGridPointsLikeCgal
 
 TEST(ExactMerge, OverlappingSpheresEveryOperationAndHeuristicMatchCgal) {
   ExactPair p(scene("sphere", {{"n", "400"}}), scene("sphere", {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}}));
-  for (const std::string h : {"first", "crystal", "halving", "naylor", "octree"}) {
+  for (const std::string h : {"first", "crystal", "halving", "naylor", "octree", "sah"}) {
     const ExactSolidTree a = p.solid(p.a, h), b = p.solid(p.b, h);
     for (SetOp op : kOps) {
       MergeStats stats;

@@ -327,7 +327,7 @@ TEST(HeuristicParams, UnknownKeysAndOutOfRangeValuesAreRejected) {
 }
 
 TEST(HeuristicParams, FreePlaneFallbacksAreRegisteredAutopartitions) {
-  for (const char* name : {"halving", "octree"}) {
+  for (const char* name : {"halving", "octree", "sah"}) {
     const auto& h = find_heuristic(name);
     EXPECT_FALSE(h.autopartition) << name;
     const auto fallback =

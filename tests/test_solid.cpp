@@ -162,6 +162,34 @@ TEST(Merge, PruningByBoundsMakesTheSameTree) {
   }
 }
 
+// The SAH front end cuts off empty space: with two spheres far apart along x, the cheapest binned
+// plane at the root lies in the gap between them, an empty region (a midpoint rule would also
+// land there; the second level tells them apart: each sphere's node is cut near its own middle,
+// not at the midpoint of the whole box). Merging its trees is proved like the others'.
+TEST(SolidTree, SahSolidCutsOffEmptySpaceAndMergesProved) {
+  std::vector<Polygon> far = solid_scene("sphere", {{"n", "800"}, {"x", "-6"}});
+  const std::vector<Polygon> right = solid_scene("sphere", {{"n", "800"}, {"x", "4"}, {"scale", "0.5"}});
+  far.insert(far.end(), right.begin(), right.end());
+  Box b;
+  for (const auto& poly : far)
+    for (const auto& v : poly.verts) b.add(v.p);
+  const SolidTree t = solid_of(far, "sah", solid_box(b, b));
+  ASSERT_FALSE(is_leaf(t.root));
+  const SolidNode& root = t.nodes[t.root];
+  EXPECT_EQ(root.plane.n, (Vec3{1, 0, 0}));
+  EXPECT_GT(-root.plane.d, -5.0);  // the left sphere spans x in [-7, -5], the right [3.5, 4.5]
+  EXPECT_LT(-root.plane.d, 3.5);
+  const SolidSize chain = solid_size(solid_of(far, "first", solid_box(b, b)));
+  EXPECT_LT(solid_size(t).depth * 4, chain.depth);
+  const Pair p = make_pair_of("sphere", {{"n", "1000"}}, {{"n", "1000"}, {"x", "0.5"}, {"scale", "0.9"}});
+  const SolidTree sa = solid_of(p.a, "sah", p.box), sb = solid_of(p.b, "sah", p.box);
+  for (SetOp op : kOps) {
+    const SolidCheck c = prove(merge(sa, sb, op), p, op);
+    EXPECT_EQ(c.mismatches, 0u) << set_op_name(op);
+    EXPECT_EQ(c.boundary.edges.border_edges, 0u) << set_op_name(op);
+  }
+}
+
 TEST(SolidInput, OpenOrMisorientedMeshesAreRefusedWithTheCount) {
   auto box = solid_scene("box", {{"seed", "0"}});
   EXPECT_NO_THROW(require_closed_solid(box, 1e-9, "box"));

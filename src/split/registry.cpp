@@ -16,6 +16,7 @@ const std::vector<HeuristicInfo>& heuristics() {
       naylor_heuristic(),
       halving_heuristic(),
       octree_heuristic(),
+      sah_heuristic(),
   };
   return all;
 }

@@ -41,5 +41,6 @@ HeuristicInfo crystal_heuristic();
 HeuristicInfo naylor_heuristic();
 HeuristicInfo halving_heuristic();
 HeuristicInfo octree_heuristic();
+HeuristicInfo sah_heuristic();
 
 }  // namespace bsp
