@@ -68,7 +68,7 @@ constexpr benchmark::IterationCount kSlowRuns = 3;  // iterations of runs that t
 constexpr double kMeshOffset = 0.05;                // of the mesh's bounding box, per axis
 constexpr std::uint64_t kNefMaxN = 10000;           // Nef polyhedra take about a second at 10^4
 constexpr int kNefRepeats = 3;
-constexpr int kPruneRepeats = 3;
+constexpr int kPruneRepeats = 4;  // even: each merge first in half the rounds
 
 using Clock = std::chrono::steady_clock;
 
@@ -139,7 +139,8 @@ double nef_seconds(const Operands& o, SetOp op, double& volume) {
 
 // The same merge with pruning by bounds (MergeOptions) on the same trees: what pruning changes.
 // Below kLargeN only, where both run in seconds.
-// Both merges alternate on the same trees, so neither is favoured by warm caches.
+// Both merges alternate on the same trees, each first in every other round, so neither is favoured
+// by warm caches.
 void record_pruned(benchmark::State& state, const Operands& o, const std::string& h, SetOp op) {
   auto splitter = make_splitter(h, {}, kSeed);
   const SolidBuild a = build_solid(o.a, *splitter, o.box);
@@ -147,7 +148,7 @@ void record_pruned(benchmark::State& state, const Operands& o, const std::string
   std::vector<double> times, pruned_times;  // times: unpruned, as merge/ runs
   MergeStats stats;
   for (int i = 0; i < kPruneRepeats; ++i) {
-    for (const bool prune : {true, false}) {
+    for (const bool prune : {i % 2 == 0, i % 2 != 0}) {
       const auto start = Clock::now();
       const SolidTree r = merge(a.solid, b.solid, op, prune ? &stats : nullptr, MergeOptions{.prune_by_bounds = prune});
       (prune ? pruned_times : times).push_back(seconds_since(start));
@@ -159,7 +160,7 @@ void record_pruned(benchmark::State& state, const Operands& o, const std::string
   state.counters["pruned_partition_nodes"] = static_cast<double>(stats.partition_nodes);
 }
 
-void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp op) {
+void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp op, std::uint64_t n) {
   std::vector<double> builds, merges, boundaries;
   SolidTree result;
   MergeStats stats;
@@ -210,7 +211,7 @@ void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp o
   state.counters["partition_nodes"] = static_cast<double>(stats.partition_nodes);
   state.counters["shp_splits"] = static_cast<double>(stats.shp_splits);
   state.counters["operand_nodes"] = static_cast<double>(operand_nodes);
-  if (std::max(o->a.size(), o->b.size()) < kLargeN) record_pruned(state, *o, h, op);
+  if (n < kLargeN) record_pruned(state, *o, h, op);
   if (std::max(o->a.size(), o->b.size()) <= kNefMaxN) {
     double nef_volume = 0;
     const double nef = nef_seconds(*o, op, nef_volume);
@@ -260,7 +261,7 @@ bool runs_at(const std::string& h, std::uint64_t n) {
 
 void register_one(const std::string& pair, std::uint64_t n, const Operands* o, const std::string& h, SetOp op) {
   const std::string name = "merge/" + std::string(set_op_name(op)) + "/" + pair + "/n:" + std::to_string(n) + "/" + h;
-  auto* b = benchmark::RegisterBenchmark(name.c_str(), bm_merge, o, h, op);
+  auto* b = benchmark::RegisterBenchmark(name.c_str(), bm_merge, o, h, op, n);
   b->Unit(benchmark::kMillisecond)->UseRealTime();
   if (n >= 10000) b->Iterations(kSlowRuns);
   if (n >= kHugeN) return;

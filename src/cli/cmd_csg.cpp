@@ -45,6 +45,7 @@ nlohmann::json step_json(const csg::Program& program, const experiments::CsgStep
           {"partition_calls", s.stats.partition_calls},
           {"shp_splits", s.stats.shp_splits},
           {"merge_nodes", s.stats.merge_nodes},
+          {"pruned", s.stats.pruned},
           {"nodes_before_reduce", s.stats.before.nodes},
           {"nodes_after_reduce", s.stats.after.nodes}};
 }
@@ -59,7 +60,8 @@ nlohmann::json leaf_json(const csg::Program& program, const experiments::CsgLeaf
 }
 
 nlohmann::json evaluation_json(const csg::Program& program, const csg::Postfix& postfix,
-                               const experiments::CsgEvaluation& e, const experiments::HeuristicChoice& heuristic) {
+                               const experiments::CsgEvaluation& e, const experiments::HeuristicChoice& heuristic,
+                               const MergeOptions& merge) {
   nlohmann::json steps = nlohmann::json::array(), leaves = nlohmann::json::array();
   for (const auto& s : e.steps) steps.push_back(step_json(program, s));
   for (const auto& l : e.leaves) leaves.push_back(leaf_json(program, l));
@@ -67,6 +69,7 @@ nlohmann::json evaluation_json(const csg::Program& program, const csg::Postfix& 
           {"kernel", kernel_name(e.kernel)},
           {"heuristic", heuristic.name},
           {"heuristic_params", heuristic.resolved.to_json()},
+          {"prune_by_bounds", merge.prune_by_bounds},
           {"leaves_built", e.leaves.size()},
           {"steps_done", e.steps.size()},
           {"lowering",
@@ -173,7 +176,7 @@ int run(Args& args) {
   }
   const auto splitter = heuristic.splitter(seed);
   const experiments::CsgEvaluation e = experiments::evaluate_program(loaded.program, loaded.postfix, *splitter, settings);
-  nlohmann::json out = evaluation_json(loaded.program, loaded.postfix, e, heuristic);
+  nlohmann::json out = evaluation_json(loaded.program, loaded.postfix, e, heuristic, settings.merge);
   out["program"] = source.label();
   for (const std::string& peer : peers)
     out["peers"][peer] = to_json(experiments::run_peer(peer, loaded.file, loaded.postfix, scratch,

@@ -41,7 +41,8 @@ ExactSolidTree combined(const ExactSolidTree& a, const ExactSolidTree& b, Ref& b
 // garbage (split, or in a subtree a cell operation drops), so the store holds about what the
 // merge's live trees hold rather than everything the merge ever made; the operands' are never
 // released. Nodes below `first_made_node` are the operands' (combined()), which point only to
-// operands' nodes.
+// operands' nodes. A subtree pruning by bounds passes on whole keeps its nodes, and their
+// sub-hyperplanes, where they are.
 class MadeShps {
  public:
   MadeShps(const ExactSolidTree& a, const ExactSolidTree& b, ExactFragments& store, Ref first_made_node)
@@ -98,9 +99,10 @@ class MadeShps {
 // nodes' sub-hyperplanes (MadeShps).
 class ExactPartitioner {
  public:
+  // Nodes below `first_node` (A's) are never partitioned: the side array of boxes starts there.
   ExactPartitioner(ExactSolidTree& work, ExactSolidSpace& space, MergeStats& stats, MadeShps& made,
-                   MergeOptions options)
-      : w_(work), store_(space.shps()), stats_(stats), made_(made), options_(options) {}
+                   MergeOptions options, Ref first_node)
+      : w_(work), store_(space.shps()), stats_(stats), made_(made), options_(options), first_node_(first_node) {}
 
   struct Parts {
     Ref plus, minus;
@@ -186,36 +188,38 @@ class ExactPartitioner {
   Ref node(std::uint32_t plane, std::uint32_t shp, Ref front, Ref back) { return w_.add_node(plane, shp, front, back); }
 
   int bounds_side(Ref t, std::uint32_t h) {
-    return options_.prune_by_bounds ? box_side(subtree_box(t), store_.planes().approx(h)) : 0;
+    if (!options_.prune_by_bounds || t < first_node_) return 0;
+    return box_side(subtree_box(t), store_.planes().approx(h));
   }
 
   // The box of subtree t's sub-hyperplanes, each node's computed once, children first.
   FilterBox subtree_box(Ref t) {
-    if (boxes_.size() < w_.nodes.size()) {
-      boxes_.resize(w_.nodes.size());
-      box_known_.resize(w_.nodes.size(), false);
+    const auto slot = [&](Ref r) { return static_cast<std::size_t>(r - first_node_); };
+    if (boxes_.size() < slot(static_cast<Ref>(w_.nodes.size()))) {
+      boxes_.resize(slot(static_cast<Ref>(w_.nodes.size())));
+      box_known_.resize(boxes_.size(), false);
     }
     stack_.assign(1, t);
     while (!stack_.empty()) {
       const Ref r = stack_.back();
-      if (box_known_[r]) {  // a subtree two parents share
+      if (box_known_[slot(r)]) {  // a subtree two parents share
         stack_.pop_back();
         continue;
       }
       const ExactSolidNode n = w_.nodes[r];
-      const bool front_ready = is_leaf(n.front) || box_known_[n.front];
-      const bool back_ready = is_leaf(n.back) || box_known_[n.back];
+      const bool front_ready = is_leaf(n.front) || box_known_[slot(n.front)];
+      const bool back_ready = is_leaf(n.back) || box_known_[slot(n.back)];
       if (!front_ready) stack_.push_back(n.front);
       if (!back_ready) stack_.push_back(n.back);
       if (!front_ready || !back_ready) continue;
       FilterBox b = store_.box(w_.shp[r]);
       for (const Ref c : {n.front, n.back})
-        if (!is_leaf(c)) b = united(b, boxes_[c]);
-      boxes_[r] = b;
-      box_known_[r] = true;
+        if (!is_leaf(c)) b = united(b, boxes_[slot(c)]);
+      boxes_[slot(r)] = b;
+      box_known_[slot(r)] = true;
       stack_.pop_back();
     }
-    return boxes_[t];
+    return boxes_[slot(t)];
   }
 
   // The leaf of subtree t on the side of h(t1) where t has no sub-hyperplane: shp(t1) ∩ r(t) lies
@@ -295,7 +299,8 @@ class ExactPartitioner {
   MergeStats& stats_;
   MadeShps& made_;
   const MergeOptions options_;
-  std::vector<FilterBox> boxes_;  // parallel to the work nodes (exact_merge.h), filled on demand
+  const Ref first_node_;
+  std::vector<FilterBox> boxes_;  // node first_node_ + i at i (exact_merge.h), filled on demand
   std::vector<bool> box_known_;
   std::vector<Ref> stack_;
   std::vector<Frame> frames_;
@@ -305,8 +310,8 @@ class ExactPartitioner {
 class ExactMerger {
  public:
   ExactMerger(ExactSolidTree& work, ExactSolidSpace& space, const CellTable& table, MergeStats& stats, MadeShps& made,
-              MergeOptions options)
-      : w_(work), table_(table), stats_(stats), made_(made), partitioner_(work, space, stats, made, options) {}
+              MergeOptions options, Ref first_b)
+      : w_(work), table_(table), stats_(stats), made_(made), partitioner_(work, space, stats, made, options, first_b) {}
 
   Ref merge(Ref a_root, Ref b_root) {
     struct Frame {
@@ -449,7 +454,7 @@ ExactSolidTree merge_with_table(const ExactSolidTree& a, const ExactSolidTree& b
   Ref b_root = kOut;
   ExactSolidTree work = combined(a, b, b_root);
   MadeShps made(a, b, space.shps(), static_cast<Ref>(work.nodes.size()));
-  work.root = ExactMerger(work, space, table, st, made, options).merge(a.root, b_root);
+  work.root = ExactMerger(work, space, table, st, made, options, static_cast<Ref>(a.nodes.size())).merge(a.root, b_root);
   st.merge_seconds = seconds_since(start);
   st.before = solid_size(work);
   const auto reduce_start = Clock::now();

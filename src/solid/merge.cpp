@@ -67,8 +67,8 @@ SolidTree combined(const SolidTree& a, const SolidTree& b, Ref& b_root) {
 
 class Merger {
  public:
-  Merger(SolidTree& work, const CellTable& table, MergeStats& stats, MergeOptions options)
-      : w_(work), table_(table), stats_(stats), partitioner_(work, stats, options) {}
+  Merger(SolidTree& work, const CellTable& table, MergeStats& stats, MergeOptions options, Ref first_b)
+      : w_(work), table_(table), stats_(stats), partitioner_(work, stats, options, first_b) {}
 
   Ref merge(Ref a_root, Ref b_root);
 
@@ -206,43 +206,45 @@ RegionSide region_side(const SolidTree& s, Ref v, const std::vector<Plane>& path
 
 }  // namespace
 
-Partitioner::Partitioner(SolidTree& work, MergeStats& stats, MergeOptions options)
-    : w_(work), stats_(stats), eps_(work.tol.plane_eps), options_(options) {}
+Partitioner::Partitioner(SolidTree& work, MergeStats& stats, MergeOptions options, Ref first_node)
+    : w_(work), stats_(stats), eps_(work.tol.plane_eps), options_(options), first_node_(first_node) {}
 
 const Box& Partitioner::subtree_box(Ref t) {
-  if (boxes_.size() < w_.nodes.size()) {
-    boxes_.resize(w_.nodes.size());
-    box_known_.resize(w_.nodes.size(), false);
+  const auto slots = w_.nodes.size() - static_cast<std::size_t>(first_node_);
+  if (boxes_.size() < slots) {
+    boxes_.resize(slots);
+    box_known_.resize(slots, false);
   }
+  const auto known = [&](Ref r) { return box_known_[static_cast<std::size_t>(r - first_node_)]; };
   stack_.assign(1, t);
   while (!stack_.empty()) {
     const Ref r = stack_.back();
-    if (box_known_[r]) {  // a subtree two parents share
+    if (known(r)) {  // a subtree two parents share
       stack_.pop_back();
       continue;
     }
     const SolidNode n = w_.nodes[r];
-    const bool front_ready = is_leaf(n.front) || box_known_[n.front];
-    const bool back_ready = is_leaf(n.back) || box_known_[n.back];
+    const bool front_ready = is_leaf(n.front) || known(n.front);
+    const bool back_ready = is_leaf(n.back) || known(n.back);
     if (!front_ready) stack_.push_back(n.front);
     if (!back_ready) stack_.push_back(n.back);
     if (!front_ready || !back_ready) continue;
     Box b;
     for (const Vec3& p : w_.loops[w_.shp[r]]) b.add(p);
     for (const Ref c : {n.front, n.back})
-      if (!is_leaf(c)) b.add(boxes_[c]);
-    boxes_[r] = b;
-    box_known_[r] = true;
+      if (!is_leaf(c)) b.add(boxes_[static_cast<std::size_t>(c - first_node_)]);
+    boxes_[static_cast<std::size_t>(r - first_node_)] = b;
+    box_known_[static_cast<std::size_t>(r - first_node_)] = true;
     stack_.pop_back();
   }
-  return boxes_[t];
+  return boxes_[static_cast<std::size_t>(t - first_node_)];
 }
 
 int Partitioner::bounds_side(Ref t, const Plane& h) {
-  if (!options_.prune_by_bounds) return 0;
+  if (!options_.prune_by_bounds || t < first_node_) return 0;
   const Box& b = subtree_box(t);
   if (b.empty()) return 0;  // no sub-hyperplane left: reduce() decides where such nodes go
-  const Vec3 centre = (b.lo + b.hi) * 0.5, half = (b.hi - b.lo) * 0.5;
+  const Vec3 centre = b.center(), half = (b.hi - b.lo) * 0.5;
   const double v = h.distance(centre);
   const double r = std::abs(h.n.x) * half.x + std::abs(h.n.y) * half.y + std::abs(h.n.z) * half.z;
   if (v - r > eps_) return 1;
@@ -253,9 +255,8 @@ int Partitioner::bounds_side(Ref t, const Plane& h) {
 // As the exact kernel's, but the tolerance may call shp(t1) coplanar with, or spanning, a node's
 // plane within plane_eps of it: then the subtree is partitioned as usual.
 Ref Partitioner::leaf_beyond(Ref t, std::uint32_t shp_h, const Plane& h, bool& ok) {
-  ok = true;
-  for (bool counted = true; !is_leaf(t); counted = false) {
-    if (!counted) ++stats_.partition_nodes;  // t itself was counted by partition_descend()
+  std::uint64_t walked = 0;  // below t, which partition_descend() counted
+  for (; !is_leaf(t); ++walked) {
     const SolidNode& n = w_.nodes[t];
     const Side s = classify_loop(w_.loops[shp_h], h, n.plane, eps_);
     if (s != Side::Front && s != Side::Back) {
@@ -264,6 +265,8 @@ Ref Partitioner::leaf_beyond(Ref t, std::uint32_t shp_h, const Plane& h, bool& o
     }
     t = n.child(s == Side::Front);
   }
+  ok = true;
+  stats_.partition_nodes += walked > 0 ? walked - 1 : 0;
   return t;
 }
 
@@ -274,7 +277,7 @@ Ref Partitioner::node(const Plane& plane, std::uint32_t shp, Ref front, Ref back
 
 Partitioner::Parts Partitioner::partition(Ref t, std::uint32_t shp_h, const Plane& h) {
   ++stats_.partition_calls;
-  frames_.assign(1, {t, shp_h, Kind::Pending});
+  frames_.assign(1, {t, shp_h, Kind::Pending, true});
   parts_.clear();
   while (!frames_.empty()) {
     const std::size_t top = frames_.size() - 1;
@@ -300,7 +303,8 @@ void Partitioner::partition_descend(std::size_t top, const Plane& h) {
   }
   ++stats_.partition_nodes;
   const SolidNode node = w_.nodes[f.t];
-  if (const int side = bounds_side(f.t, h); side != 0) {  // T wholly on one side: no copy of its path
+  bool prune = f.prune;
+  if (const int side = prune ? bounds_side(f.t, h) : 0; side != 0) {  // T wholly on one side: no copy of its path
     bool ok = false;
     const Ref leaf = leaf_beyond(f.t, f.shp_h, h, ok);
     if (ok) {
@@ -309,6 +313,7 @@ void Partitioner::partition_descend(std::size_t top, const Plane& h) {
       parts_.push_back(side > 0 ? Parts{f.t, leaf} : Parts{leaf, f.t});
       return;
     }
+    prune = false;
   }
   switch (classify_loop(w_.loops[f.shp_h], h, node.plane, eps_)) {
     case Side::Coplanar:
@@ -318,11 +323,11 @@ void Partitioner::partition_descend(std::size_t top, const Plane& h) {
       return;
     case Side::Front:
       frames_[top].kind = Kind::InFront;
-      frames_.push_back({node.front, f.shp_h, Kind::Pending});
+      frames_.push_back({node.front, f.shp_h, Kind::Pending, prune});
       return;
     case Side::Back:
       frames_[top].kind = Kind::InBack;
-      frames_.push_back({node.back, f.shp_h, Kind::Pending});
+      frames_.push_back({node.back, f.shp_h, Kind::Pending, prune});
       return;
     case Side::Spanning: {
       split_loop(w_.loops[f.shp_h], node.plane, 0.0, front_, back_);
@@ -330,8 +335,8 @@ void Partitioner::partition_descend(std::size_t top, const Plane& h) {
       const std::uint32_t in_front = w_.loops.add(front_);
       const std::uint32_t in_back = w_.loops.add(back_);
       frames_[top].kind = Kind::InBoth;
-      frames_.push_back({node.back, in_back, Kind::Pending});
-      frames_.push_back({node.front, in_front, Kind::Pending});
+      frames_.push_back({node.back, in_back, Kind::Pending, prune});
+      frames_.push_back({node.front, in_front, Kind::Pending, prune});
       return;
     }
   }
@@ -419,7 +424,7 @@ SolidTree merge_with_table(const SolidTree& a, const SolidTree& b, const CellTab
   SolidTree work = combined(a, b, b_root);
   work.box = a.box;
   work.tol = a.tol;
-  work.root = Merger(work, table, st, options).merge(a.root, b_root);
+  work.root = Merger(work, table, st, options, static_cast<Ref>(a.nodes.size())).merge(a.root, b_root);
   st.merge_seconds = seconds_since(start);
   st.before = solid_size(work);
   const auto reduce_start = Clock::now();

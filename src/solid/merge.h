@@ -58,7 +58,9 @@ struct MergeStats {
 // a subtree of T whose sub-hyperplanes all lie on one side of h(t1) (their box, a side array the
 // partition fills as it meets nodes, misses h(t1)) has no node on the other side, so its part
 // there is one leaf, found down one path, and the subtree goes to its side whole instead of as
-// copies of the nodes on that path. Off by default: partitionTree already descends only where
+// copies of the nodes on that path. (In the float kernel a node whose sub-hyperplane the tolerance
+// emptied goes along whole too, where the full partition places its other child by the farther
+// side; both are within plane_eps of h(t1).) Off by default: partitionTree already descends only where
 // shp(t1) reaches, and a sub-hyperplane spans its node's region, so pruning visits exactly the
 // nodes it would have (MergeStats::partition_nodes is equal on every measured pair) and computing
 // the boxes costs more than the copies it saves (docs/solids.md).
@@ -75,7 +77,9 @@ class Partitioner {
   // A part whose two children are the same leaf is that leaf, so a part holding nothing of the
   // solid is OUT at once (what view-volume culling needs to skip a side), and merging never
   // partitions, or cuts sub-hyperplanes for, what reduce() would remove.
-  Partitioner(SolidTree& work, MergeStats& stats, MergeOptions options = {});
+  // Nodes below `first_node` are never partitioned (merging's first operand): the side array of
+  // boxes starts there, so its size follows what is partitioned, not the whole work array.
+  Partitioner(SolidTree& work, MergeStats& stats, MergeOptions options = {}, Ref first_node = 0);
   struct Parts {
     Ref plus, minus;  // T+ and T-
   };
@@ -89,6 +93,8 @@ class Partitioner {
     Ref t;
     std::uint32_t shp_h;  // shp(t1) inside r(T)
     Kind kind;
+    bool prune;  // false below a subtree whose walk the tolerance stopped: every box below is
+                 // on the same side, and each would stop the same way
   };
   void partition_descend(std::size_t top, const Plane& h);
   // Where the box of subtree t's sub-hyperplanes lies against h: +1 farther than plane_eps in
@@ -96,7 +102,8 @@ class Partitioner {
   int bounds_side(Ref t, const Plane& h);
   const Box& subtree_box(Ref t);
   // The leaf of subtree t on the side of h it has no sub-hyperplane on, reached by where shp_h lies
-  // against each node's plane; kOut with ok false when a tolerance decision stops the walk.
+  // against each node's plane; kOut with ok false when a tolerance decision stops the walk (then
+  // nothing is counted: the usual partition visits those nodes).
   Ref leaf_beyond(Ref t, std::uint32_t shp_h, const Plane& h, bool& ok);
   Parts partition_combine(const PartFrame& f, const Plane& h);
   bool shp_in_front(Ref t, const Plane& h);
@@ -107,7 +114,8 @@ class Partitioner {
   MergeStats& stats_;
   const double eps_;
   const MergeOptions options_;
-  std::vector<Box> boxes_;       // parallel to work nodes: the box of each subtree's sub-hyperplanes
+  const Ref first_node_;
+  std::vector<Box> boxes_;       // node first_node_ + i at i: the box of its subtree's sub-hyperplanes
   std::vector<bool> box_known_;  // set once a box is computed (a node's subtree never changes)
   std::vector<Ref> stack_;
   std::vector<PartFrame> frames_;

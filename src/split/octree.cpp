@@ -28,6 +28,7 @@
 
 #include "common/rng.h"
 #include "split/fallbacks.h"
+#include "split/fragment_extents.h"
 #include "split/registry.h"
 
 namespace bsp {
@@ -64,13 +65,14 @@ class OctreeSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     if (ctx.ids.size() <= s_.leaf_faces) return fallback_->choose(ctx);
-    measure_extents(ctx);
+    extents_.measure(ctx);
+    const Box& box = extents_.box();
     for (int axis : axes_by_extent()) {
-      const double a = box_.lo[axis] + kEndMargin * (box_.hi[axis] - box_.lo[axis]);
-      const double b = box_.hi[axis] - kEndMargin * (box_.hi[axis] - box_.lo[axis]);
+      const double a = box.lo[axis] + kEndMargin * (box.hi[axis] - box.lo[axis]);
+      const double b = box.hi[axis] - kEndMargin * (box.hi[axis] - box.lo[axis]);
       if (!(a < b)) break;  // the fragments have no extent along this axis, nor any shorter one
       const double x = coarsest_lattice_point(a, b);
-      if (parts(axis, x, ctx.tol.plane_eps)) {
+      if (extents_.parts(axis, x, ctx.tol.plane_eps)) {
         const Vec3 n{axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0};
         return SplitChoice::free_plane(Plane{n, -x});
       }
@@ -79,41 +81,16 @@ class OctreeSplitter final : public Splitter {
   }
 
  private:
-  // Each fragment's interval along each axis, and the box of all of them.
-  void measure_extents(const SplitContext& ctx) {
-    lo_.clear();
-    hi_.clear();
-    box_ = Box{};
-    for (auto id : ctx.ids) {
-      Box f;
-      for (const Vec3& p : ctx.frags.points(id)) f.add(p);
-      lo_.push_back(f.lo);
-      hi_.push_back(f.hi);
-      box_.add(f);
-    }
-  }
-
   std::array<int, 3> axes_by_extent() const {
     std::array<int, 3> axes{0, 1, 2};
-    const Vec3 size = box_.size();
+    const Vec3 size = extents_.box().size();
     std::stable_sort(axes.begin(), axes.end(), [&](int i, int j) { return size[i] > size[j]; });
     return axes;
   }
 
-  // Whether some fragment lies wholly behind the plane axis = x and some wholly in front.
-  bool parts(int axis, double x, double eps) const {
-    bool back = false, front = false;
-    for (std::size_t i = 0; i < lo_.size() && !(back && front); ++i) {
-      back |= hi_[i][axis] < x - eps;
-      front |= lo_[i][axis] > x + eps;
-    }
-    return back && front;
-  }
-
   OctreeSettings s_;
   std::unique_ptr<Splitter> fallback_;
-  std::vector<Vec3> lo_, hi_;  // scratch, per fragment of the node
-  Box box_;
+  FragmentExtents extents_;  // scratch, of the node being chosen for
 };
 
 

@@ -7,9 +7,9 @@
 //     fragments' box, L and R its parts at x, A a box's surface area, and n the fragments
 //     meeting each part (a fragment across x counts on both sides, as the faces of a kd-tree's
 //     cells do);
-//  3. the cheapest candidate wins (the lower axis, then the lower x, on ties) if it costs less
-//     than the node as a leaf (m, one per fragment) and parts the fragments: at least one wholly
-//     behind it and one wholly in front (farther than plane_eps), as `octree` requires.
+//  3. the cheapest candidate that parts the fragments (at least one wholly behind it and one
+//     wholly in front, farther than plane_eps, as `octree` requires) wins, the lower axis and then
+//     the lower x on ties, if it costs less than the node as a leaf (m, one per fragment).
 // Otherwise, or at most `leaf_faces` fragments, the node goes to the autopartition heuristic named
 // by `fallback`: the faces' own planes below the spatial levels, as in `octree`.
 //
@@ -18,14 +18,14 @@
 // and merging cuts one operand's cells by the other's planes.
 // Cost per node: O(V) for the fragments' extents (V vertices), O(m + bins) per axis to count.
 #include <algorithm>
-#include <array>
+#include <cmath>
 #include <cstdint>
-#include <limits>
-#include <string>
+#include <tuple>
 #include <vector>
 
 #include "common/rng.h"
 #include "split/fallbacks.h"
+#include "split/fragment_extents.h"
 #include "split/registry.h"
 
 namespace bsp {
@@ -46,9 +46,10 @@ Vec3 with_axis(Vec3 v, int axis, double value) {
 }
 
 struct Candidate {
-  int axis = -1;
-  double x = 0;
-  double cost = std::numeric_limits<double>::infinity();
+  double cost;
+  int axis;
+  double x;
+  bool operator<(const Candidate& o) const { return std::tie(cost, axis, x) < std::tie(o.cost, o.axis, o.x); }
 };
 
 class SahSplitter final : public Splitter {
@@ -60,38 +61,31 @@ class SahSplitter final : public Splitter {
 
   SplitChoice choose(const SplitContext& ctx) override {
     if (ctx.ids.size() <= s_.leaf_faces) return fallback_->choose(ctx);
-    measure_extents(ctx);
-    const Candidate best = cheapest();
-    const double leaf_cost = static_cast<double>(lo_.size());
-    if (best.axis >= 0 && best.cost < leaf_cost && parts(best.axis, best.x, ctx.tol.plane_eps)) {
-      const Vec3 n{best.axis == 0 ? 1.0 : 0.0, best.axis == 1 ? 1.0 : 0.0, best.axis == 2 ? 1.0 : 0.0};
-      return SplitChoice::free_plane(Plane{n, -best.x});
+    extents_.measure(ctx);
+    cost_candidates();
+    std::sort(candidates_.begin(), candidates_.end());
+    const double leaf_cost = static_cast<double>(extents_.size());
+    for (const Candidate& c : candidates_) {
+      if (!(c.cost < leaf_cost)) break;
+      if (!extents_.parts(c.axis, c.x, ctx.tol.plane_eps)) continue;
+      const Vec3 n{c.axis == 0 ? 1.0 : 0.0, c.axis == 1 ? 1.0 : 0.0, c.axis == 2 ? 1.0 : 0.0};
+      return SplitChoice::free_plane(Plane{n, -c.x});
     }
     return fallback_->choose(ctx);
   }
 
  private:
-  void measure_extents(const SplitContext& ctx) {
-    lo_.clear();
-    hi_.clear();
-    box_ = Box{};
-    for (auto id : ctx.ids) {
-      Box f;
-      for (const Vec3& p : ctx.frags.points(id)) f.add(p);
-      lo_.push_back(f.lo);
-      hi_.push_back(f.hi);
-      box_.add(f);
-    }
-  }
-
-  // Binned counts: a fragment meets the parts below candidate k (k = 1 … bins − 1, at the bound
-  // between bins k − 1 and k) when it starts in a bin below k, and the parts above when it ends in
-  // bin k or above.
-  Candidate cheapest() {
-    Candidate best;
-    const Vec3 size = box_.size();
+  // Binned counts: a fragment meets the part below candidate k (k = 1 … bins − 1, at the bound
+  // between bins k − 1 and k) when it starts in a bin below k, and the part above when it ends in
+  // bin k or above. A start on a bound is in the bin above it and an end on a bound in the bin
+  // below, so a fragment ending on candidate k counts below it only, one starting there above it
+  // only, and a face lying in it on neither side (the build puts it on the node).
+  void cost_candidates() {
+    candidates_.clear();
+    const Box& box = extents_.box();
+    const Vec3 size = box.size();
     const double area = surface_area(size);
-    if (!(area > 0)) return best;
+    if (!(area > 0)) return;
     const std::size_t bins = s_.bins;
     for (int axis = 0; axis < 3; ++axis) {
       const double extent = size[axis];
@@ -99,54 +93,45 @@ class SahSplitter final : public Splitter {
       starts_.assign(bins, 0);
       ends_.assign(bins, 0);
       const double scale = static_cast<double>(bins) / extent;
-      const auto bin = [&](double v) {
-        const auto b = static_cast<std::int64_t>((v - box_.lo[axis]) * scale);
-        return static_cast<std::size_t>(std::clamp<std::int64_t>(b, 0, static_cast<std::int64_t>(bins) - 1));
+      const auto clamped = [&](double b) {
+        return static_cast<std::size_t>(std::clamp(b, 0.0, static_cast<double>(bins) - 1));
       };
-      for (std::size_t i = 0; i < lo_.size(); ++i) {
-        ++starts_[bin(lo_[i][axis])];
-        ++ends_[bin(hi_[i][axis])];
+      for (std::size_t i = 0; i < extents_.size(); ++i) {
+        ++starts_[clamped(std::floor((extents_.lo(i)[axis] - box.lo[axis]) * scale))];
+        ++ends_[clamped(std::ceil((extents_.hi(i)[axis] - box.lo[axis]) * scale) - 1)];
       }
-      std::size_t below = 0, above = lo_.size();  // fragments meeting the lower / upper part
+      std::size_t below = 0, above = extents_.size();  // fragments meeting the lower / upper part
       for (std::size_t k = 1; k < bins; ++k) {
         below += starts_[k - 1];
         above -= ends_[k - 1];
-        const double x = box_.lo[axis] + extent * static_cast<double>(k) / static_cast<double>(bins);
-        const Vec3 lower = with_axis(size, axis, x - box_.lo[axis]), upper = with_axis(size, axis, box_.hi[axis] - x);
+        const double x = box.lo[axis] + extent * static_cast<double>(k) / static_cast<double>(bins);
+        const Vec3 lower = with_axis(size, axis, x - box.lo[axis]), upper = with_axis(size, axis, box.hi[axis] - x);
         const double cost = s_.traversal_cost + (surface_area(lower) * static_cast<double>(below) +
                                                  surface_area(upper) * static_cast<double>(above)) /
                                                     area;
-        if (cost < best.cost) best = {axis, x, cost};
+        candidates_.push_back({cost, axis, x});
       }
     }
-    return best;
-  }
-
-  bool parts(int axis, double x, double eps) const {
-    bool back = false, front = false;
-    for (std::size_t i = 0; i < lo_.size() && !(back && front); ++i) {
-      back |= hi_[i][axis] < x - eps;
-      front |= lo_[i][axis] > x + eps;
-    }
-    return back && front;
   }
 
   SahSettings s_;
   std::unique_ptr<Splitter> fallback_;
-  std::vector<Vec3> lo_, hi_;  // scratch, per fragment of the node
+  FragmentExtents extents_;  // scratch, of the node being chosen for
   std::vector<std::size_t> starts_, ends_;
-  Box box_;
+  std::vector<Candidate> candidates_;
 };
 
 }  // namespace
 
+// The defaults: octree's leaf_faces, so the two front ends differ in where they cut and not in how
+// deep; 16 bins per axis as [Wald2007] found enough; a node test as dear as a face test.
 HeuristicInfo sah_heuristic() {
   return {"sah",
           "spatial front end: axis-aligned planes minimising the surface area heuristic over binned candidates until a "
           "node holds few faces or a split costs more than a leaf, then the faces' own planes (kd-trees, MacDonald & "
           "Booth 1990; Wald & Havran 2006)",
           {{"leaf_faces", ParamSpec::Kind::Integer,
-            "a node of more fragments than this may take an axis-aligned plane; fewer go to the fallback", 64, 1, 1e9, {}},
+            "a node of more fragments than this may take an axis-aligned plane; at most this many go to the fallback", 64, 1, 1e9, {}},
            {"bins", ParamSpec::Kind::Integer, "equal bins per axis; their inner bounds are the candidate planes", 16, 2,
             1024, {}},
            {"traversal_cost", ParamSpec::Kind::Real, "cost of a node against one fragment's test, in the SAH", 1, 0, 1e6,
