@@ -189,6 +189,14 @@ TEST(CsgEvaluate, ProgramsOfBoxesHaveTheirClosedFormVolumes) {
   }
 }
 
+// The settings of the proof tests below: one kernel, 2000 points.
+experiments::CsgSettings proof_settings(Kernel kernel) {
+  experiments::CsgSettings settings;
+  settings.kernel = kernel;
+  settings.check.points = 2000;
+  return settings;
+}
+
 // A hull of a set operation (not of leaves) is proved in both kernels: the truth and CGAL's volume
 // take the hull the evaluation built, as they take leaves.
 TEST(CsgEvaluate, HullOfADifferenceIsProvedInBothKernels) {
@@ -199,9 +207,7 @@ TEST(CsgEvaluate, HullOfADifferenceIsProvedInBothKernels) {
   for (const Kernel kernel : {Kernel::Exact, Kernel::Float}) {
     SCOPED_TRACE(kernel_name(kernel));
     const auto splitter = make_splitter("octree", {}, 1);
-    experiments::CsgSettings settings;
-    settings.kernel = kernel;
-    settings.check.points = 2000;
+    experiments::CsgSettings settings = proof_settings(kernel);
     const experiments::CsgEvaluation e = experiments::evaluate_program(program, postfix, *splitter, settings);
     EXPECT_TRUE(e.check.ok()) << to_json(e.check).dump();
     EXPECT_NEAR(e.check.volume, 64, 1e-6);  // the corners stay: the hull is the cube (snapped, in the exact kernel)
@@ -219,9 +225,7 @@ TEST(CsgEvaluate, PlantedWrongOperationIsCaughtByTheProof) {
   for (const Kernel kernel : {Kernel::Exact, Kernel::Float}) {
     SCOPED_TRACE(kernel_name(kernel));
     const auto splitter = make_splitter("octree", {}, 1);
-    experiments::CsgSettings settings;
-    settings.kernel = kernel;
-    settings.check.points = 2000;
+    experiments::CsgSettings settings = proof_settings(kernel);
     const experiments::CsgEvaluation right = experiments::evaluate_program(program, good, *splitter, settings);
     EXPECT_TRUE(right.check.ok()) << to_json(right.check).dump();
     settings.truth = &good;  // the planted program's result proved against the true program
