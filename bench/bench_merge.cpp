@@ -150,7 +150,7 @@ void record_pruned(benchmark::State& state, const Operands& o, const std::string
   for (int i = 0; i < kPruneRepeats; ++i) {
     for (const bool prune : {i % 2 == 0, i % 2 != 0}) {
       const auto start = Clock::now();
-      const SolidTree r = merge(a.solid, b.solid, op, prune ? &stats : nullptr, MergeOptions{.prune_by_bounds = prune});
+      const SolidTree r = merge(a.solid, b.solid, op, prune ? &stats : nullptr, MergeOptions{.prune_by_bounds = prune, .compaction = {}});
       (prune ? pruned_times : times).push_back(seconds_since(start));
     }
   }

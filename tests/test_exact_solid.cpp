@@ -142,10 +142,36 @@ TEST(ExactMerge, PruningByBoundsMakesTheSameTree) {
     for (SetOp op : kOps) {
       MergeStats full, pruned;
       const ExactSolidTree r = merge(a, b, *p.space, op, &full);
-      const ExactSolidTree q = merge(a, b, *p.space, op, &pruned, MergeOptions{.prune_by_bounds = true});
+      const ExactSolidTree q = merge(a, b, *p.space, op, &pruned, MergeOptions{.prune_by_bounds = true, .compaction = {}});
       EXPECT_EQ(full.pruned, 0u);
       EXPECT_GT(pruned.pruned, 0u) << h << " " << set_op_name(op);
       EXPECT_EQ(pruned.partition_nodes, full.partition_nodes) << h << " " << set_op_name(op);
+      EXPECT_EQ(check_exact_solid(q, *p.space), "") << h << " " << set_op_name(op);
+      ASSERT_EQ(q.nodes.size(), r.nodes.size()) << h << " " << set_op_name(op);
+      EXPECT_EQ(q.root, r.root);
+      for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+        EXPECT_EQ(q.nodes[i].plane, r.nodes[i].plane);
+        EXPECT_EQ(q.nodes[i].front, r.nodes[i].front);
+        EXPECT_EQ(q.nodes[i].back, r.nodes[i].back);
+      }
+      EXPECT_EQ(prove_points(q, p, op, 1000).mismatches, 0) << h << " " << set_op_name(op);
+    }
+  }
+}
+
+// As Merge.ChainOperandsCompactedMakeTheSameTree: compacting the work array often changes nothing
+// in the merged tree, whose invariants (every sub-hyperplane on its plane, inside its region) hold.
+TEST(ExactMerge, ChainOperandsCompactedMakeTheSameTree) {
+  ExactPair p(scene("sphere", {{"n", "400"}}), scene("torus", {{"n", "400"}, {"x", "0.6"}, {"seed", "4"}}));
+  for (const std::string h : {"first", "crystal", "octree"}) {
+    const ExactSolidTree a = p.solid(p.a, h), b = p.solid(p.b, h);
+    for (SetOp op : kOps) {
+      MergeStats never, often;
+      const ExactSolidTree r = merge(a, b, *p.space, op, &never, MergeOptions{.prune_by_bounds = false, .compaction = {.floor = UINT64_MAX}});
+      const ExactSolidTree q = merge(a, b, *p.space, op, &often, MergeOptions{.prune_by_bounds = false, .compaction = {.floor = 0}});
+      EXPECT_EQ(never.compactions, 0u);
+      EXPECT_GT(often.compactions, 3u) << h << " " << set_op_name(op);
+      EXPECT_EQ(often.before.nodes, never.before.nodes) << h << " " << set_op_name(op);
       EXPECT_EQ(check_exact_solid(q, *p.space), "") << h << " " << set_op_name(op);
       ASSERT_EQ(q.nodes.size(), r.nodes.size()) << h << " " << set_op_name(op);
       EXPECT_EQ(q.root, r.root);

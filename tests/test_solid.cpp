@@ -150,7 +150,7 @@ TEST(Merge, PruningByBoundsMakesTheSameTree) {
     for (SetOp op : kOps) {
       MergeStats full, pruned;
       const SolidTree r = merge(a, b, op, &full);
-      const SolidTree q = merge(a, b, op, &pruned, MergeOptions{.prune_by_bounds = true});
+      const SolidTree q = merge(a, b, op, &pruned, MergeOptions{.prune_by_bounds = true, .compaction = {}});
       EXPECT_EQ(full.pruned, 0u);
       EXPECT_GT(pruned.pruned, 0u) << h << " " << set_op_name(op);
       EXPECT_EQ(pruned.partition_nodes, full.partition_nodes) << h << " " << set_op_name(op);
@@ -159,6 +159,36 @@ TEST(Merge, PruningByBoundsMakesTheSameTree) {
         EXPECT_EQ(q.nodes[i].plane, r.nodes[i].plane);
         EXPECT_EQ(q.nodes[i].front, r.nodes[i].front);
         EXPECT_EQ(q.nodes[i].back, r.nodes[i].back);
+      }
+      EXPECT_EQ(prove(q, p, op, 1000).mismatches, 0u) << h << " " << set_op_name(op);
+    }
+  }
+}
+
+// Chains (an autopartition of a convex solid) leave the most garbage: partitioned again at every
+// node of A, each part of B is referenced once. Compacting the work array whenever twice what was
+// live has been made keeps only what the pending parts and results reach; the merged tree is the
+// same node for node and loop for loop, and it compacts many times.
+TEST(Merge, ChainOperandsCompactedMakeTheSameTree) {
+  const Pair p = make_pair_of("sphere", {{"n", "400"}}, {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}});
+  for (const std::string h : {"first", "crystal", "octree"}) {
+    const SolidTree a = solid_of(p.a, h, p.box), b = solid_of(p.b, h, p.box);
+    for (SetOp op : kOps) {
+      MergeStats never, often;
+      const SolidTree r = merge(a, b, op, &never, MergeOptions{.prune_by_bounds = false, .compaction = {.floor = UINT64_MAX}});
+      const SolidTree q = merge(a, b, op, &often, MergeOptions{.prune_by_bounds = false, .compaction = {.floor = 0}});
+      EXPECT_EQ(never.compactions, 0u);
+      EXPECT_GT(often.compactions, 3u) << h << " " << set_op_name(op);
+      EXPECT_EQ(often.before.nodes, never.before.nodes) << h << " " << set_op_name(op);
+      ASSERT_EQ(q.nodes.size(), r.nodes.size()) << h << " " << set_op_name(op);
+      EXPECT_EQ(q.root, r.root);
+      for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+        EXPECT_EQ(q.nodes[i].plane, r.nodes[i].plane);
+        EXPECT_EQ(q.nodes[i].front, r.nodes[i].front);
+        EXPECT_EQ(q.nodes[i].back, r.nodes[i].back);
+        const auto lq = q.loops[q.shp[i]], lr = r.loops[r.shp[i]];
+        ASSERT_EQ(lq.size(), lr.size());
+        EXPECT_TRUE(std::equal(lq.begin(), lq.end(), lr.begin()));
       }
       EXPECT_EQ(prove(q, p, op, 1000).mismatches, 0u) << h << " " << set_op_name(op);
     }

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "solid/compaction.h"
+
 namespace bsp {
 
 namespace {
@@ -107,6 +109,14 @@ class ExactPartitioner {
   struct Parts {
     Ref plus, minus;
   };
+  // Nodes from `first_moved` on were renumbered (compaction.h): their boxes are recomputed on demand.
+  void forget_boxes_from(Ref first_moved) {
+    const auto kept = static_cast<std::size_t>(std::max<Ref>(first_moved - first_node_, 0));
+    if (boxes_.size() > kept) {
+      boxes_.resize(kept);
+      box_known_.resize(kept);
+    }
+  }
   Parts partition(Ref t, std::uint32_t shp_h, std::uint32_t h) {
     ++stats_.partition_calls;
     frames_.assign(1, {t, shp_h, false, Kind::Pending});
@@ -311,16 +321,14 @@ class ExactMerger {
  public:
   ExactMerger(ExactSolidTree& work, ExactSolidSpace& space, const CellTable& table, MergeStats& stats, MadeShps& made,
               MergeOptions options, Ref first_b)
-      : w_(work), table_(table), stats_(stats), made_(made), partitioner_(work, space, stats, made, options, first_b) {}
+      : w_(work), table_(table), stats_(stats), made_(made), policy_(options.compaction),
+        partitioner_(work, space, stats, made, options, first_b), first_made_(static_cast<Ref>(work.nodes.size())) {}
 
   Ref merge(Ref a_root, Ref b_root) {
-    struct Frame {
-      Ref a, b;
-      bool combining;
-    };
     std::vector<Frame> frames{{a_root, b_root, false}};
     std::vector<Ref> results;
     while (!frames.empty()) {
+      compact_if_due(frames, results);
       const Frame f = frames.back();
       if (!f.combining) {
         if (is_leaf(f.a) || is_leaf(f.b)) {
@@ -348,6 +356,26 @@ class ExactMerger {
   }
 
  private:
+  struct Frame {
+    Ref a, b;
+    bool combining;  // b is partitioned: waiting for the children's results
+  };
+
+  // As merge.cpp's: the parts the frames still to start will merge, and the finished results, are
+  // the live references. A sub-hyperplane is an id in the space's store and moves with its node
+  // (MadeShps keeps the store's account).
+  void compact_if_due(std::vector<Frame>& frames, std::vector<Ref>& results) {
+    const auto made = static_cast<std::uint64_t>(w_.nodes.size()) - static_cast<std::uint64_t>(first_made_);
+    if (!policy_.due(made, live_after_compaction_)) return;
+    references_.clear();
+    for (Frame& f : frames)
+      if (!f.combining) references_.push_back(&f.b);
+    for (Ref& r : results) references_.push_back(&r);
+    live_after_compaction_ = compact_made_nodes(w_.nodes, w_.shp, first_made_, references_);
+    partitioner_.forget_boxes_from(first_made_);
+    ++stats_.compactions;
+  }
+
   Ref cell_op(Ref a, Ref b) {
     ++stats_.cell_ops;
     const bool a_is_cell = is_leaf(a);
@@ -389,7 +417,11 @@ class ExactMerger {
   const CellTable& table_;
   MergeStats& stats_;
   MadeShps& made_;
+  const CompactionPolicy policy_;
   ExactPartitioner partitioner_;
+  const Ref first_made_;
+  std::uint64_t live_after_compaction_ = 0;
+  std::vector<Ref*> references_;
 };
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "solid/merge.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "geometry/convex_loop.h"
 #include "geometry/polygon.h"
 #include "geometry/polytope.h"
+#include "solid/compaction.h"
 
 namespace bsp {
 
@@ -65,31 +67,81 @@ SolidTree combined(const SolidTree& a, const SolidTree& b, Ref& b_root) {
   return w;
 }
 
+// The loops of the made nodes that compaction kept, moved down in id order as the nodes were; the
+// pieces of shp(t1) partitioning cut, and the loops of garbage nodes, go.
+void compact_made_loops(SolidTree& w, Ref first_made, std::uint32_t first_made_loop) {
+  constexpr std::uint32_t kGone = 0xffffffffu;
+  const std::size_t made = w.loops.size() - first_made_loop;
+  std::vector<std::uint32_t> to(made, kGone);
+  for (std::size_t i = static_cast<std::size_t>(first_made); i < w.nodes.size(); ++i)
+    if (w.shp[i] >= first_made_loop) to[w.shp[i] - first_made_loop] = 0;
+  std::vector<Vec3>& points = w.loops.points;
+  std::vector<std::uint32_t>& start = w.loops.start;
+  std::uint32_t next = first_made_loop, point = start[first_made_loop];
+  for (std::uint32_t i = 0; i < made; ++i) {
+    if (to[i] == kGone) continue;
+    // start[id] and start[id + 1] are read before start[next <= id] is written.
+    const std::uint32_t begin = start[first_made_loop + i], end = start[first_made_loop + i + 1];
+    if (point != begin) std::copy(points.begin() + begin, points.begin() + end, points.begin() + point);
+    start[next] = point;
+    point += end - begin;
+    to[i] = next++;
+  }
+  start[next] = point;
+  start.resize(next + 1);
+  points.resize(point);
+  for (std::size_t i = static_cast<std::size_t>(first_made); i < w.nodes.size(); ++i)
+    if (w.shp[i] >= first_made_loop) w.shp[i] = to[w.shp[i] - first_made_loop];
+}
+
 class Merger {
  public:
   Merger(SolidTree& work, const CellTable& table, MergeStats& stats, MergeOptions options, Ref first_b)
-      : w_(work), table_(table), stats_(stats), partitioner_(work, stats, options, first_b) {}
+      : w_(work), table_(table), stats_(stats), policy_(options.compaction), partitioner_(work, stats, options, first_b),
+        first_made_(static_cast<Ref>(work.nodes.size())), first_made_loop_(static_cast<std::uint32_t>(work.loops.size())) {}
 
   Ref merge(Ref a_root, Ref b_root);
 
  private:
+  struct Frame {
+    Ref a, b;
+    bool combining;  // b is partitioned: waiting for the children's results
+  };
+  void compact_if_due(std::vector<Frame>& frames, std::vector<Ref>& results);
   Ref cell_op(Ref a, Ref b);
   Ref complement(Ref t);
 
   SolidTree& w_;
   const CellTable& table_;
   MergeStats& stats_;
+  const CompactionPolicy policy_;
   Partitioner partitioner_;
+  const Ref first_made_;
+  const std::uint32_t first_made_loop_;
+  std::uint64_t live_after_compaction_ = 0;
+  std::vector<Ref*> references_;
 };
 
+// The live references between two merge steps: the parts of B the frames still to start will
+// merge, and the finished results.
+void Merger::compact_if_due(std::vector<Frame>& frames, std::vector<Ref>& results) {
+  const auto made = static_cast<std::uint64_t>(w_.nodes.size()) - static_cast<std::uint64_t>(first_made_);
+  if (!policy_.due(made, live_after_compaction_)) return;
+  references_.clear();
+  for (Frame& f : frames)
+    if (!f.combining) references_.push_back(&f.b);
+  for (Ref& r : results) references_.push_back(&r);
+  live_after_compaction_ = compact_made_nodes(w_.nodes, w_.shp, first_made_, references_);
+  compact_made_loops(w_, first_made_, first_made_loop_);
+  partitioner_.forget_boxes_from(first_made_);
+  ++stats_.compactions;
+}
+
 Ref Merger::merge(Ref a_root, Ref b_root) {
-  struct Frame {
-    Ref a, b;
-    bool combining;
-  };
   std::vector<Frame> frames{{a_root, b_root, false}};
   std::vector<Ref> results;
   while (!frames.empty()) {
+    compact_if_due(frames, results);
     const Frame f = frames.back();
     if (!f.combining) {
       if (is_leaf(f.a) || is_leaf(f.b)) {
@@ -208,6 +260,14 @@ RegionSide region_side(const SolidTree& s, Ref v, const std::vector<Plane>& path
 
 Partitioner::Partitioner(SolidTree& work, MergeStats& stats, MergeOptions options, Ref first_node)
     : w_(work), stats_(stats), eps_(work.tol.plane_eps), options_(options), first_node_(first_node) {}
+
+void Partitioner::forget_boxes_from(Ref first_moved) {
+  const auto kept = static_cast<std::size_t>(std::max<Ref>(first_moved - first_node_, 0));
+  if (boxes_.size() > kept) {
+    boxes_.resize(kept);
+    box_known_.resize(kept);
+  }
+}
 
 const Box& Partitioner::subtree_box(Ref t) {
   const auto slots = w_.nodes.size() - static_cast<std::size_t>(first_node_);

@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "solid/compaction.h"
 #include "solid/solid_tree.h"
 
 namespace bsp {
@@ -44,6 +45,7 @@ struct MergeStats {
   // there: the other side is the one leaf the subtree has there, found down one path, and nothing
   // below is partitioned or copied (MergeOptions::prune_by_bounds).
   std::uint64_t pruned = 0;
+  std::uint64_t compactions = 0;  // times the work array's garbage was collected (compaction.h)
   // Places where the tolerance decisions disagreed with each other (shp(t1) spanning h(T) while
   // shp(T) did not span h(t1), or the reverse): resolved by the farther side; the region involved
   // is within plane_eps of both planes.
@@ -66,6 +68,7 @@ struct MergeStats {
 // the boxes costs more than the copies it saves (docs/solids.md).
 struct MergeOptions {
   bool prune_by_bounds = false;
+  CompactionPolicy compaction;  // when the work array's garbage is collected (compaction.h)
 };
 
 // partitionTree (§4.1) on its own: the parts of tree T (a subtree of `work`) in front of and behind
@@ -84,6 +87,8 @@ class Partitioner {
     Ref plus, minus;  // T+ and T-
   };
   Parts partition(Ref t, std::uint32_t shp_h, const Plane& h);
+  // Nodes from `first_moved` on were renumbered (compaction.h): their boxes are recomputed on demand.
+  void forget_boxes_from(Ref first_moved);
 
  private:
   // One pending partitionTree(T, shp(t1)): Pending until classified, then waiting for the parts of
