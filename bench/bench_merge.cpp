@@ -19,7 +19,7 @@
 //           merge_vs_nef (builds included);
 //       volume_difference: |IN cells' volume - corefinement's| / corefinement's;
 //       result_nodes, result_depth (after reduce), nodes_before_reduce; partition_nodes,
-//       shp_splits (merge cost); operand_nodes (both operands).
+//       shp_splits (merge cost); compactions (of the merge's work array); operand_nodes (both operands).
 //   merge_kernel/OP/PAIR/n:N/HEURISTIC   the float and the exact kernel on the same operands in one
 //       iteration (solid_build.h against exact_solid_tree.h, merge.h against exact_merge.h); one
 //       thread; counters, the medians of the iterations: float_build_seconds, exact_build_seconds
@@ -31,18 +31,23 @@
 // each) or a CGAL sample mesh with a copy of itself moved by 5% of its box (mesh:NAME), when the
 // mesh cache has it.
 //
-// Which heuristics run where: chains (first and the autopartitions on a convex sphere) make merging
-// quadratic in time and memory (crystal's 10^5-sphere union ran out of 24 GB), and naylor's build
-// on a 10^4 sphere takes seconds; so 10^5 runs halving, octree and sah only, 10^6 (asked for with
-// --bsp_sizes) octree and sah only, without the kernel comparison, and naylor stops at 10^4.
+// Which heuristics run where by default: chains (first and the autopartitions on a convex sphere)
+// make building, merging and the boundary quadratic in time (compaction keeps merging's memory
+// linear: solid/compaction.h), and naylor's build on a 10^4 sphere takes seconds; so 10^5 runs
+// halving, octree and sah only, 10^6 (asked for with --bsp_sizes) octree and sah only, without the
+// kernel comparison, and naylor stops at 10^4. A heuristic named with --bsp_heuristics runs at
+// every size asked for, once per operation where the default would skip it (a chain's 10^5 union
+// takes about half an hour: docs/solids.md).
 // Select with --bsp_heuristics and --bsp_sizes (bench_common.h), e.g.
 //   build/bench/bspbench_bench_merge --bsp_sizes=10000 --bsp_heuristics=halving
 //   build/bench/bspbench_bench_merge --bsp_sizes=1000000 --bsp_heuristics=octree
+//   build/bench/bspbench_bench_merge --bsp_sizes=100000 --bsp_heuristics=crystal --benchmark_filter='^merge/union/sphere'
 #include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <string_view>
 
 #include "bench_common.h"
 #include "catalog.h"
@@ -209,6 +214,7 @@ void bm_merge(benchmark::State& state, const Operands* o, std::string h, SetOp o
   state.counters["result_depth"] = static_cast<double>(stats.after.depth);
   state.counters["nodes_before_reduce"] = static_cast<double>(stats.before.nodes);
   state.counters["partition_nodes"] = static_cast<double>(stats.partition_nodes);
+  state.counters["compactions"] = static_cast<double>(stats.compactions);
   state.counters["shp_splits"] = static_cast<double>(stats.shp_splits);
   state.counters["operand_nodes"] = static_cast<double>(operand_nodes);
   if (n < kLargeN) record_pruned(state, *o, h, op);
@@ -259,31 +265,34 @@ bool runs_at(const std::string& h, std::uint64_t n) {
   return h != "naylor" || n <= kNaylorMaxN;
 }
 
-void register_one(const std::string& pair, std::uint64_t n, const Operands* o, const std::string& h, SetOp op) {
+void register_one(const std::string& pair, std::uint64_t n, const Operands* o, const std::string& h, SetOp op,
+                  benchmark::IterationCount slow_runs) {
   const std::string name = "merge/" + std::string(set_op_name(op)) + "/" + pair + "/n:" + std::to_string(n) + "/" + h;
   auto* b = benchmark::RegisterBenchmark(name.c_str(), bm_merge, o, h, op, n);
   b->Unit(benchmark::kMillisecond)->UseRealTime();
-  if (n >= 10000) b->Iterations(kSlowRuns);
+  if (n >= 10000) b->Iterations(slow_runs);
   if (n >= kHugeN) return;
   const std::string kernel_name = "merge_kernel" + name.substr(name.find('/'));
   auto* k = benchmark::RegisterBenchmark(kernel_name.c_str(), bm_kernel_merge, o, h, op);
   k->Unit(benchmark::kMillisecond)->UseRealTime();
-  if (n >= 10000) k->Iterations(kSlowRuns);
+  if (n >= 10000) k->Iterations(slow_runs);
 }
 
-void register_all(const Selection& sel) {
+void register_all(const Selection& sel, bool heuristics_named) {
   const SetOp ops[] = {SetOp::Union, SetOp::Intersection, SetOp::Difference};
   for (auto n : sel.sizes)
-    for (const auto& h : sel.heuristics)
-      if (runs_at(h, n))
-        for (SetOp op : ops) register_one("sphere", n, &sphere_pair(n), h, op);
+    for (const auto& h : sel.heuristics) {
+      const bool by_default = runs_at(h, n);
+      if (by_default || heuristics_named)
+        for (SetOp op : ops) register_one("sphere", n, &sphere_pair(n), h, op, by_default ? kSlowRuns : 1);
+    }
   const std::vector<MeshEntry> meshes = available_meshes();
   for (const std::string mesh : {"mesh:elephant", "mesh:dino"}) {
     if (std::none_of(meshes.begin(), meshes.end(), [&](const auto& m) { return "mesh:" + m.name == mesh; })) continue;
     const Operands* o = &mesh_pair(mesh);
     for (const auto& h : sel.heuristics)
       if (runs_at(h, o->a.size()))
-        for (SetOp op : ops) register_one(mesh, o->a.size(), o, h, op);
+        for (SetOp op : ops) register_one(mesh, o->a.size(), o, h, op, kSlowRuns);
   }
 }
 
@@ -293,9 +302,12 @@ void register_all(const Selection& sel) {
 
 int main(int argc, char** argv) {
   try {
+    const bool heuristics_named = std::any_of(argv + 1, argv + argc, [](const char* a) {
+      return std::string_view(a).starts_with("--bsp_heuristics");
+    });
     const auto sel =
         bsp::bench::take_selection(argc, argv, {{}, {"first", "crystal", "halving", "naylor", "octree", "sah"}, {1000, 10000, 100000}});
-    bsp::bench::register_all(sel);
+    bsp::bench::register_all(sel, heuristics_named);
     return bsp::bench::run_benchmarks(argc, argv, "bspbench_bench_merge");
   } catch (const std::exception& e) {
     std::cerr << "bspbench_bench_merge: " << e.what() << "\n";

@@ -91,6 +91,9 @@ void compute_subhyperplanes(SolidTree& solid) {
     loop = plane_in_box(node.plane, solid.box);
     for (const Plane& p : path) {
       if (loop.empty()) break;
+      // Wholly on the kept side, the loop is what the cut would keep, vertex for vertex: most
+      // ancestors of a chain's deep nodes are such, and the test reads the distances only.
+      if (std::all_of(loop.begin(), loop.end(), [&](const Vec3& v) { return p.distance(v) >= 0; })) continue;
       // A plane coplanar with an ancestor's keeps its loop; any other is cut where the distance
       // changes sign: snapping vertices within eps to the plane would move the cut along an edge
       // that grazes the plane by far more than eps.
