@@ -35,9 +35,9 @@
 // make building, merging and the boundary quadratic in time (compaction keeps merging's memory
 // linear: solid/compaction.h), and naylor's build on a 10^4 sphere takes seconds; so 10^5 runs
 // halving, octree and sah only, 10^6 (asked for with --bsp_sizes) octree and sah only, without the
-// kernel comparison, and naylor stops at 10^4. A heuristic named with --bsp_heuristics runs at
-// every size asked for, once per operation where the default would skip it (a chain's 10^5 union
-// takes about half an hour: docs/solids.md).
+// kernel comparison, and naylor stops at 10^4. A heuristic named with --bsp_heuristics runs on the
+// spheres at every size asked for, once per operation where the default would skip it (a chain's
+// 10^5 union takes minutes: docs/solids.md); the mesh pairs keep the defaults.
 // Select with --bsp_heuristics and --bsp_sizes (bench_common.h), e.g.
 //   build/bench/bspbench_bench_merge --bsp_sizes=10000 --bsp_heuristics=halving
 //   build/bench/bspbench_bench_merge --bsp_sizes=1000000 --bsp_heuristics=octree

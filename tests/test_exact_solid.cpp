@@ -7,6 +7,7 @@
 
 #include <pthread.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -160,28 +161,45 @@ TEST(ExactMerge, PruningByBoundsMakesTheSameTree) {
 }
 
 // As Merge.ChainOperandsCompactedMakeTheSameTree: compacting the work array often changes nothing
-// in the merged tree, whose invariants (every sub-hyperplane on its plane, inside its region) hold.
+// in the merged tree, whose invariants (every sub-hyperplane on its plane, inside its region) hold
+// and whose sub-hyperplanes have the same certified boxes, with pruning by bounds and without.
 TEST(ExactMerge, ChainOperandsCompactedMakeTheSameTree) {
+  constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
   ExactPair p(scene("sphere", {{"n", "400"}}), scene("torus", {{"n", "400"}, {"x", "0.6"}, {"seed", "4"}}));
   for (const std::string h : {"first", "crystal", "octree"}) {
     const ExactSolidTree a = p.solid(p.a, h), b = p.solid(p.b, h);
-    for (SetOp op : kOps) {
-      MergeStats never, often;
-      const ExactSolidTree r = merge(a, b, *p.space, op, &never, MergeOptions{.prune_by_bounds = false, .compaction = {.floor = UINT64_MAX}});
-      const ExactSolidTree q = merge(a, b, *p.space, op, &often, MergeOptions{.prune_by_bounds = false, .compaction = {.floor = 0}});
-      EXPECT_EQ(never.compactions, 0u);
-      EXPECT_GT(often.compactions, 3u) << h << " " << set_op_name(op);
-      EXPECT_EQ(often.before.nodes, never.before.nodes) << h << " " << set_op_name(op);
-      EXPECT_EQ(check_exact_solid(q, *p.space), "") << h << " " << set_op_name(op);
-      ASSERT_EQ(q.nodes.size(), r.nodes.size()) << h << " " << set_op_name(op);
-      EXPECT_EQ(q.root, r.root);
-      for (std::size_t i = 0; i < r.nodes.size(); ++i) {
-        EXPECT_EQ(q.nodes[i].plane, r.nodes[i].plane);
-        EXPECT_EQ(q.nodes[i].front, r.nodes[i].front);
-        EXPECT_EQ(q.nodes[i].back, r.nodes[i].back);
+    for (const bool prune : {false, true})
+      for (SetOp op : kOps) {
+        const std::string what = h + " " + std::string(set_op_name(op)) + (prune ? " pruned" : "");
+        MergeStats never, often;
+        const ExactSolidTree r =
+            merge(a, b, *p.space, op, &never, MergeOptions{.prune_by_bounds = prune, .compaction = {.floor = kNever}});
+        const ExactSolidTree q =
+            merge(a, b, *p.space, op, &often, MergeOptions{.prune_by_bounds = prune, .compaction = {.floor = 0}});
+        EXPECT_EQ(never.compactions, 0u);
+        EXPECT_GT(often.compactions, 3u) << what;
+        EXPECT_GT(often.compacted_nodes, 0u) << what;
+        EXPECT_EQ(often.pruned, never.pruned) << what;
+        EXPECT_EQ(often.before.nodes, never.before.nodes) << what;
+        EXPECT_EQ(check_exact_solid(q, *p.space), "") << what;
+        ASSERT_EQ(q.nodes.size(), r.nodes.size()) << what;
+        EXPECT_EQ(q.root, r.root);
+        std::size_t boxed = 0;
+        for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+          EXPECT_EQ(q.nodes[i].plane, r.nodes[i].plane);
+          EXPECT_EQ(q.nodes[i].front, r.nodes[i].front);
+          EXPECT_EQ(q.nodes[i].back, r.nodes[i].back);
+          const FilterBox bq = p.space->shps().box(q.shp[i]), br = p.space->shps().box(r.shp[i]);
+          ASSERT_EQ(bq.bounded, br.bounded);
+          boxed += bq.bounded;
+          for (int k = 0; k < 3 && bq.bounded; ++k) {
+            EXPECT_EQ(bq.centre[k], br.centre[k]);
+            EXPECT_EQ(bq.half[k], br.half[k]);
+          }
+        }
+        EXPECT_GT(boxed, r.nodes.size() / 2) << what;
+        EXPECT_EQ(prove_points(q, p, op, 1000).mismatches, 0) << what;
       }
-      EXPECT_EQ(prove_points(q, p, op, 1000).mismatches, 0) << h << " " << set_op_name(op);
-    }
   }
 }
 

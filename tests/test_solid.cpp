@@ -5,6 +5,7 @@
 #include <pthread.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <array>
 #include <map>
@@ -166,32 +167,38 @@ TEST(Merge, PruningByBoundsMakesTheSameTree) {
 }
 
 // Chains (an autopartition of a convex solid) leave the most garbage: partitioned again at every
-// node of A, each part of B is referenced once. Compacting the work array whenever twice what was
-// live has been made keeps only what the pending parts and results reach; the merged tree is the
-// same node for node and loop for loop, and it compacts many times.
+// node of A, each part of B is referenced once. Compacting the work array whenever more than twice
+// what was live has been made keeps only what the pending parts and results reach; the merged tree
+// is the same node for node and loop for loop, with pruning by bounds (whose boxes of moved nodes
+// are forgotten) and without, and the compactions reclaim nodes.
 TEST(Merge, ChainOperandsCompactedMakeTheSameTree) {
+  constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
   const Pair p = make_pair_of("sphere", {{"n", "400"}}, {{"n", "400"}, {"x", "0.5"}, {"scale", "0.9"}});
   for (const std::string h : {"first", "crystal", "octree"}) {
     const SolidTree a = solid_of(p.a, h, p.box), b = solid_of(p.b, h, p.box);
-    for (SetOp op : kOps) {
-      MergeStats never, often;
-      const SolidTree r = merge(a, b, op, &never, MergeOptions{.prune_by_bounds = false, .compaction = {.floor = UINT64_MAX}});
-      const SolidTree q = merge(a, b, op, &often, MergeOptions{.prune_by_bounds = false, .compaction = {.floor = 0}});
-      EXPECT_EQ(never.compactions, 0u);
-      EXPECT_GT(often.compactions, 3u) << h << " " << set_op_name(op);
-      EXPECT_EQ(often.before.nodes, never.before.nodes) << h << " " << set_op_name(op);
-      ASSERT_EQ(q.nodes.size(), r.nodes.size()) << h << " " << set_op_name(op);
-      EXPECT_EQ(q.root, r.root);
-      for (std::size_t i = 0; i < r.nodes.size(); ++i) {
-        EXPECT_EQ(q.nodes[i].plane, r.nodes[i].plane);
-        EXPECT_EQ(q.nodes[i].front, r.nodes[i].front);
-        EXPECT_EQ(q.nodes[i].back, r.nodes[i].back);
-        const auto lq = q.loops[q.shp[i]], lr = r.loops[r.shp[i]];
-        ASSERT_EQ(lq.size(), lr.size());
-        EXPECT_TRUE(std::equal(lq.begin(), lq.end(), lr.begin()));
+    for (const bool prune : {false, true})
+      for (SetOp op : kOps) {
+        const std::string what = h + " " + std::string(set_op_name(op)) + (prune ? " pruned" : "");
+        MergeStats never, often;
+        const SolidTree r = merge(a, b, op, &never, MergeOptions{.prune_by_bounds = prune, .compaction = {.floor = kNever}});
+        const SolidTree q = merge(a, b, op, &often, MergeOptions{.prune_by_bounds = prune, .compaction = {.floor = 0}});
+        EXPECT_EQ(never.compactions, 0u);
+        EXPECT_GT(often.compactions, 3u) << what;
+        EXPECT_GT(often.compacted_nodes, 0u) << what;
+        EXPECT_EQ(often.pruned, never.pruned) << what;
+        EXPECT_EQ(often.before.nodes, never.before.nodes) << what;
+        ASSERT_EQ(q.nodes.size(), r.nodes.size()) << what;
+        EXPECT_EQ(q.root, r.root);
+        for (std::size_t i = 0; i < r.nodes.size(); ++i) {
+          EXPECT_EQ(q.nodes[i].plane, r.nodes[i].plane);
+          EXPECT_EQ(q.nodes[i].front, r.nodes[i].front);
+          EXPECT_EQ(q.nodes[i].back, r.nodes[i].back);
+          const auto lq = q.loops[q.shp[i]], lr = r.loops[r.shp[i]];
+          ASSERT_EQ(lq.size(), lr.size());
+          EXPECT_TRUE(std::equal(lq.begin(), lq.end(), lr.begin()));
+        }
+        EXPECT_EQ(prove(q, p, op, 1000).mismatches, 0u) << what;
       }
-      EXPECT_EQ(prove(q, p, op, 1000).mismatches, 0u) << h << " " << set_op_name(op);
-    }
   }
 }
 

@@ -46,6 +46,7 @@ nlohmann::json step_json(const csg::Program& program, const experiments::CsgStep
           {"shp_splits", s.stats.shp_splits},
           {"merge_nodes", s.stats.merge_nodes},
           {"pruned", s.stats.pruned},
+          {"compactions", s.stats.compactions},
           {"nodes_before_reduce", s.stats.before.nodes},
           {"nodes_after_reduce", s.stats.after.nodes}};
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <string>
 #include <stdexcept>
 #include <vector>
@@ -321,8 +322,8 @@ class ExactMerger {
  public:
   ExactMerger(ExactSolidTree& work, ExactSolidSpace& space, const CellTable& table, MergeStats& stats, MadeShps& made,
               MergeOptions options, Ref first_b)
-      : w_(work), table_(table), stats_(stats), made_(made), policy_(options.compaction),
-        partitioner_(work, space, stats, made, options, first_b), first_made_(static_cast<Ref>(work.nodes.size())) {}
+      : w_(work), table_(table), stats_(stats), made_(made), partitioner_(work, space, stats, made, options, first_b),
+        compactor_(options.compaction, static_cast<Ref>(work.nodes.size())) {}
 
   Ref merge(Ref a_root, Ref b_root) {
     std::vector<Frame> frames{{a_root, b_root, false}};
@@ -361,19 +362,14 @@ class ExactMerger {
     bool combining;  // b is partitioned: waiting for the children's results
   };
 
-  // As merge.cpp's: the parts the frames still to start will merge, and the finished results, are
-  // the live references. A sub-hyperplane is an id in the space's store and moves with its node
-  // (MadeShps keeps the store's account).
+  // A sub-hyperplane is an id in the space's store and moves with its node (MadeShps keeps the
+  // store's account); the boxes of the nodes that moved are recomputed when asked for.
   void compact_if_due(std::vector<Frame>& frames, std::vector<Ref>& results) {
-    const auto made = static_cast<std::uint64_t>(w_.nodes.size()) - static_cast<std::uint64_t>(first_made_);
-    if (!policy_.due(made, live_after_compaction_)) return;
-    references_.clear();
-    for (Frame& f : frames)
-      if (!f.combining) references_.push_back(&f.b);
-    for (Ref& r : results) references_.push_back(&r);
-    live_after_compaction_ = compact_made_nodes(w_.nodes, w_.shp, first_made_, references_);
-    partitioner_.forget_boxes_from(first_made_);
+    const std::optional<std::uint64_t> reclaimed = compactor_.run_if_due(w_.nodes, w_.shp, frames, results);
+    if (!reclaimed) return;
+    partitioner_.forget_boxes_from(compactor_.first_made());
     ++stats_.compactions;
+    stats_.compacted_nodes += *reclaimed;
   }
 
   Ref cell_op(Ref a, Ref b) {
@@ -417,11 +413,8 @@ class ExactMerger {
   const CellTable& table_;
   MergeStats& stats_;
   MadeShps& made_;
-  const CompactionPolicy policy_;
   ExactPartitioner partitioner_;
-  const Ref first_made_;
-  std::uint64_t live_after_compaction_ = 0;
-  std::vector<Ref*> references_;
+  Compactor compactor_;
 };
 
 }  // namespace

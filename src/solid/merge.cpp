@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -97,8 +98,9 @@ void compact_made_loops(SolidTree& w, Ref first_made, std::uint32_t first_made_l
 class Merger {
  public:
   Merger(SolidTree& work, const CellTable& table, MergeStats& stats, MergeOptions options, Ref first_b)
-      : w_(work), table_(table), stats_(stats), policy_(options.compaction), partitioner_(work, stats, options, first_b),
-        first_made_(static_cast<Ref>(work.nodes.size())), first_made_loop_(static_cast<std::uint32_t>(work.loops.size())) {}
+      : w_(work), table_(table), stats_(stats), partitioner_(work, stats, options, first_b),
+        compactor_(options.compaction, static_cast<Ref>(work.nodes.size())),
+        first_made_loop_(static_cast<std::uint32_t>(work.loops.size())) {}
 
   Ref merge(Ref a_root, Ref b_root);
 
@@ -114,27 +116,19 @@ class Merger {
   SolidTree& w_;
   const CellTable& table_;
   MergeStats& stats_;
-  const CompactionPolicy policy_;
   Partitioner partitioner_;
-  const Ref first_made_;
+  Compactor compactor_;
   const std::uint32_t first_made_loop_;
-  std::uint64_t live_after_compaction_ = 0;
-  std::vector<Ref*> references_;
 };
 
-// The live references between two merge steps: the parts of B the frames still to start will
-// merge, and the finished results.
+// Nodes, then their loops; the boxes of the nodes that moved are recomputed when asked for.
 void Merger::compact_if_due(std::vector<Frame>& frames, std::vector<Ref>& results) {
-  const auto made = static_cast<std::uint64_t>(w_.nodes.size()) - static_cast<std::uint64_t>(first_made_);
-  if (!policy_.due(made, live_after_compaction_)) return;
-  references_.clear();
-  for (Frame& f : frames)
-    if (!f.combining) references_.push_back(&f.b);
-  for (Ref& r : results) references_.push_back(&r);
-  live_after_compaction_ = compact_made_nodes(w_.nodes, w_.shp, first_made_, references_);
-  compact_made_loops(w_, first_made_, first_made_loop_);
-  partitioner_.forget_boxes_from(first_made_);
+  const std::optional<std::uint64_t> reclaimed = compactor_.run_if_due(w_.nodes, w_.shp, frames, results);
+  if (!reclaimed) return;
+  compact_made_loops(w_, compactor_.first_made(), first_made_loop_);
+  partitioner_.forget_boxes_from(compactor_.first_made());
   ++stats_.compactions;
+  stats_.compacted_nodes += *reclaimed;
 }
 
 Ref Merger::merge(Ref a_root, Ref b_root) {

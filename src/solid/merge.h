@@ -45,7 +45,8 @@ struct MergeStats {
   // there: the other side is the one leaf the subtree has there, found down one path, and nothing
   // below is partitioned or copied (MergeOptions::prune_by_bounds).
   std::uint64_t pruned = 0;
-  std::uint64_t compactions = 0;  // times the work array's garbage was collected (compaction.h)
+  std::uint64_t compactions = 0;      // times the work array's garbage was collected (compaction.h)
+  std::uint64_t compacted_nodes = 0;  // made nodes those compactions reclaimed
   // Places where the tolerance decisions disagreed with each other (shp(t1) spanning h(T) while
   // shp(T) did not span h(t1), or the reverse): resolved by the farther side; the region involved
   // is within plane_eps of both planes.

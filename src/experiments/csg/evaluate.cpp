@@ -31,6 +31,9 @@ void add(MergeStats& total, const MergeStats& one) {
   total.cell_ops += one.cell_ops;
   total.complement_nodes += one.complement_nodes;
   total.inconsistent += one.inconsistent;
+  total.pruned += one.pruned;
+  total.compactions += one.compactions;
+  total.compacted_nodes += one.compacted_nodes;
   total.before = one.before;
   total.after = one.after;
   total.merge_seconds += one.merge_seconds;
