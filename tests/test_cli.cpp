@@ -188,6 +188,30 @@ TEST_F(Cli, ValidatePrintsOneJsonObjectWithTheCounts) {
     EXPECT_NE(r.out.find(key), std::string::npos) << key;
 }
 
+// The optimum of a small 2D scene, proved, its tree checked, and a gap for each heuristic named; a
+// budget that runs out gives an interval; what the solver cannot take is refused.
+TEST_F(Cli, OptimalProvesTheOptimumAndGivesEachHeuristicsGap) {
+  const CliResult r = run("optimal --scene random-segments --n 12 --heuristic first --heuristic halving --views 2 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto out = nlohmann::json::parse(r.out)["optimum"];
+  EXPECT_TRUE(out["optimal"].get<bool>());
+  EXPECT_EQ(out["lower"], out["upper"]);
+  EXPECT_EQ(out["certificate_value"], out["upper"]);
+  EXPECT_EQ(out["order_violations"], 0);
+  ASSERT_EQ(out["heuristics"].size(), 2u);
+  EXPECT_GE(out["heuristics"][0]["gap_lower"].get<double>(), 1.0);
+  EXPECT_FALSE(out["heuristics"][1]["autopartition"].get<bool>());
+  const CliResult cut = run("optimal --scene random-triangles --n 24 --scene-param size=0.5 --max-states 50 "
+                            "--objective e_line --heuristic first --views 1 --json");
+  ASSERT_EQ(cut.code, 0) << cut.err;
+  const auto bounded = nlohmann::json::parse(cut.out)["optimum"];
+  EXPECT_FALSE(bounded["optimal"].get<bool>());
+  EXPECT_LT(bounded["lower"].get<double>(), bounded["upper"].get<double>());
+  EXPECT_TRUE(bounded["solver"]["out_of_states"].get<bool>());
+  expect_usage_error("optimal --scene random-segments --n 12 --objective size", "--objective");
+  expect_usage_error("optimal --scene random-triangles --n 400", "distinct planes");
+}
+
 TEST_F(Cli, AnimateChecksEveryFrameAndRefusesUnknownStrategies) {
   const CliResult r = run("animate --scene city --n 300 --moving 2 --frames 4 --object-n 24 --json");
   ASSERT_EQ(r.code, 0) << r.err;

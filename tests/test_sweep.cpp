@@ -1483,6 +1483,7 @@ TEST(SweepSuiteFile, SchemaExampleExpandsToWhatItsKeysAsk) {
   EXPECT_EQ(kinds["merge"], 2u);           // one pair, heuristic, size and seed; two operations
   EXPECT_EQ(kinds["animate"], 2u);         // one scene, size, heuristic, count, speed and seed; two strategies
   EXPECT_EQ(kinds["occlude"], 1u);
+  EXPECT_EQ(kinds["optimal"], 2u * 2 * 2 * 2 * 2);  // scenes x heuristics x seeds x objectives x shapes, one size
   EXPECT_EQ(kinds["doom"], 2u + 1 + 1);    // one map: crystal and doom-splits, ZDBSP, the shipped nodes
 }
 

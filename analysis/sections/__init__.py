@@ -1,14 +1,15 @@
 """The report's sections, one module each, in page order. Each exposes render(report, ctx) -> Section
 or None (sections/common.py); adding a section is a module and a line here.
 """
-from sections import (animate, changes, cost_model, csg, doom, draw, glossary, kernel, merge, occlude, segments,
-                      theory, verdicts)
+from sections import (animate, changes, cost_model, csg, doom, draw, glossary, kernel, merge, occlude, optimal,
+                      segments, theory, verdicts)
 
 SECTIONS = (
     changes.render,     # with --baseline: what changed, before the contents
     verdicts.render,    # who wins where
     cost_model.render,  # does the cost model predict?
     theory.render,      # does the theory hold? (its findings also head the page)
+    optimal.render,     # how far from optimal?
     glossary.render,    # what the metrics mean
     draw.render,        # one section per drawing scene
     merge.render,       # set operations

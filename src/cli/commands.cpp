@@ -26,6 +26,7 @@ const std::vector<Command>& commands() {
       occlude_command(),
       doom_command(),
       kernel_command(),
+      optimal_command(),
   };
   return all;
 }

@@ -46,5 +46,6 @@ Command animate_command();
 Command occlude_command();
 Command doom_command();
 Command kernel_command();
+Command optimal_command();
 
 }  // namespace bsp::cli

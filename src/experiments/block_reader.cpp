@@ -231,7 +231,7 @@ std::vector<std::string> BlockReader::heuristics(const json& j, const std::strin
 }
 
 std::vector<std::string> BlockReader::generator_names(const json& j, const std::string& path, const std::string& what,
-                                                      std::vector<const GeneratorInfo*>& sized) const {
+                                                      std::vector<const GeneratorInfo*>& sized, bool allow_2d) const {
   std::vector<std::string> out;
   std::map<std::string, std::string> seen;
   each(j, path, "name at least one generator", [&](const json& v, const std::string& p) {
@@ -239,7 +239,7 @@ std::vector<std::string> BlockReader::generator_names(const json& j, const std::
     if (!v.is_string() || is_mesh_scene(name) || name.starts_with("file:"))
       fail(p, what + " scenes are generator names (no parameters, files or meshes)");
     const GeneratorInfo& g = at(p, [&]() -> const GeneratorInfo& { return find_generator(name); });
-    if (g.segments) fail(p, name + " is 2D; " + what + " wants a 3D scene");
+    if (g.segments && !allow_2d) fail(p, name + " is 2D; " + what + " wants a 3D scene");
     once(seen, g.name, p);
     out.push_back(g.name);
     if (n_spec(g)) sized.push_back(&g);

@@ -92,10 +92,10 @@ class BlockReader {
   std::string heuristic(const json& j, const std::string& path, std::string& identity) const;
   std::vector<std::string> heuristics(const json& j, const std::string& path) const;
 
-  // Plain generator names of a 3D scene list (`what` names the experiment in messages); the ones
-  // taking a size are added to `sized`.
+  // Plain generator names of a 3D scene list, or any scene list with `allow_2d` (`what` names the
+  // experiment in messages); the ones taking a size are added to `sized`.
   std::vector<std::string> generator_names(const json& j, const std::string& path, const std::string& what,
-                                           std::vector<const GeneratorInfo*>& sized) const;
+                                           std::vector<const GeneratorInfo*>& sized, bool allow_2d = false) const;
   // A block's "sizes" for the generators `sized`: required when there is one, within each one's range.
   std::vector<std::uint64_t> generator_sizes(const json& object, const std::string& path,
                                              const std::vector<const GeneratorInfo*>& sized) const;

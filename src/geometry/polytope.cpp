@@ -201,6 +201,19 @@ double ConvexPolytope::surface_area() const {
   return a;
 }
 
+ConvexPolytope::Section ConvexPolytope::top_section() const {
+  for (std::size_t i = 0; i < face_count(); ++i) {
+    const auto f = face(i);
+    const Vec3 n = newell_normal(f);
+    // Every other face of an extruded cell is vertical (n.z = 0) or faces down.
+    if (!(n.z > 0)) continue;
+    Section s{0.5 * length(n), 0};
+    for (std::size_t k = 0; k < f.size(); ++k) s.perimeter += length(f[(k + 1) % f.size()] - f[k]);
+    return s;
+  }
+  return {};
+}
+
 Box ConvexPolytope::bounds() const {
   Box b;
   for (const Vec3& p : points_) b.add(p);

@@ -39,6 +39,14 @@ class ConvexPolytope {
   enum class Measures : std::uint8_t { Volumes, VolumesAndAreas };
   SplitMeasure measure_split(const Plane& plane, double eps, Measures what = Measures::VolumesAndAreas) const;
 
+  // The cross-section of a polytope extruded from a 2D cell (a 2D tree's cells, whose planes are
+  // all vertical: geometry/segment2.h): its face facing +z, whose area and perimeter are the 2D
+  // cell's. Zero for a polytope without such a face.
+  struct Section {
+    double area = 0, perimeter = 0;
+  };
+  Section top_section() const;
+
   bool empty() const { return face_count() == 0; }
   double volume() const;        // divergence theorem: (1/3) sum of area * (n . p)
   double surface_area() const;

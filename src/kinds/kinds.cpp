@@ -9,6 +9,7 @@
 #include "experiments/kernel/kernel.h"
 #include "experiments/merge/merge.h"
 #include "experiments/occlude/occlude.h"
+#include "experiments/optimal/optimal.h"
 
 namespace bsp {
 
@@ -16,7 +17,7 @@ std::span<const experiments::Kind* const> kinds() {
   static const experiments::Kind* const all[] = {
       &experiments::draw_kind(),    &experiments::merge_kind(), &experiments::animate_kind(),
       &experiments::occlude_kind(), &experiments::doom_kind(),  &experiments::kernel_kind(),
-      &experiments::csg_kind(),
+      &experiments::csg_kind(),     &experiments::optimal_kind(),
   };
   return all;
 }

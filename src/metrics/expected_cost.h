@@ -46,4 +46,10 @@ Box root_cell(const Tree& tree, double margin);
 // has no volume (a flat scene with margin 0). Zero for an empty tree.
 ExpectedCosts expected_costs(const Tree& tree, double margin);
 
+// A 2D tree (segments, geometry/segment2.h): its cells are convex polygons in the plane, the
+// sections of the 3D cells above (ConvexPolytope::top_section), so the same sums with E_point over
+// areas and E_line over perimeters, which Crofton's formula in the plane makes the measure of the
+// lines meeting a convex set [Santalo1976]. root_volume and root_area then hold R's area and perimeter.
+ExpectedCosts planar_expected_costs(const Tree& tree, double margin);
+
 }  // namespace bsp

@@ -1,0 +1,541 @@
+#include "search/optimal.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <tuple>
+#include <unordered_map>
+#include <vector>
+
+#include "common/errors.h"
+#include "common/rng.h"
+#include "geometry/polytope.h"
+#include "geometry/segment2.h"
+#include "split/splitter.h"
+#include "tree/build.h"
+#include "tree/build_input.h"
+#include "tree/leaf_cell.h"
+
+namespace bsp {
+
+const char* objective_name(OptimalObjective o) {
+  switch (o) {
+    case OptimalObjective::Fragments: return "fragments";
+    case OptimalObjective::EPoint: return "e_point";
+    case OptimalObjective::ELine: return "e_line";
+  }
+  return "?";
+}
+
+std::optional<OptimalObjective> objective_named(std::string_view name) {
+  for (auto o : {OptimalObjective::Fragments, OptimalObjective::EPoint, OptimalObjective::ELine})
+    if (name == objective_name(o)) return o;
+  return std::nullopt;
+}
+
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+constexpr std::uint32_t kLeaf = 0xfffffffeu;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// The expected costs are sums of doubles whose order differs between a bound and the value it
+// bounds: a bound within this relative distance of another counts as reaching it.
+constexpr double kCostSlack = 1e-12;
+
+// One way to cut a state: the plane of one of its fragments and what it leaves on each side.
+struct Candidate {
+  std::uint32_t plane = kNone;  // pooled, oriented as the fragment it came from
+  double own = 0;               // the node's own term of the objective
+  std::uint32_t front = kNone, back = kNone;  // child states; kNone for an empty side
+  double floor = 0;  // a bound a refinement proved without raising its children's bounds enough to show
+};
+
+// A subproblem: a cell's fragments (interned ids, sorted) and, for the cost objectives, the cell.
+struct State {
+  std::vector<std::uint32_t> frags;
+  std::uint32_t cell = kNone;
+  double lb = 0, ub = kInf;
+  std::uint32_t choice = kNone;  // the candidate achieving ub, or kLeaf
+  std::uint32_t cand_begin = 0, cand_end = 0;  // its candidates in Solver::cands_, once expanded
+  bool expanded = false;
+};
+
+// A cell and its terms of the objective.
+struct Cell {
+  ConvexPolytope poly;
+  double volume_share = 0, area_share = 0;  // of the root cell's
+};
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t v) { return splitmix64(h ^ v); }
+std::uint64_t bits(double d) { return std::bit_cast<std::uint64_t>(d == 0.0 ? 0.0 : d); }
+
+class Solver {
+ public:
+  Solver(const OptimalSettings& settings, TreeDraft& draft, bool planar)
+      : s_(settings), draft_(draft), eps_(draft.tol.plane_eps), planar_(planar) {
+    start_ = std::chrono::steady_clock::now();
+  }
+
+  std::uint32_t root(std::vector<std::uint32_t> ids) {
+    for (auto id : ids) remember_fragment(id);
+    std::uint32_t cell = kNone;
+    if (s_.objective != OptimalObjective::Fragments) {
+      const ConvexPolytope box = ConvexPolytope::box(draft_.bounds.enlarged(s_.cell_margin));
+      std::tie(root_volume_, root_area_) = measures(box);
+      if (!(root_volume_ > 0)) throw UsageError("optimal: expected costs need a root cell with volume; use a margin > 0");
+      cell = intern_cell(box);
+    }
+    return intern_state(std::move(ids), cell);
+  }
+
+  // Gives every state of the greedy tree below `s` an upper bound and a choice.
+  void greedy(std::uint32_t s) {
+    struct Item {
+      std::uint32_t state;
+      bool children_done;
+    };
+    std::vector<Item> stack{{s, false}};
+    while (!stack.empty()) {
+      const Item item = stack.back();
+      stack.pop_back();
+      if (!item.children_done) {
+        if (states_[item.state].ub < kInf) continue;
+        expand(item.state);
+        const State& st = states_[item.state];
+        if (st.choice == kLeaf) continue;
+        std::uint32_t best = kNone;
+        for (auto c = st.cand_begin; c < st.cand_end; ++c)
+          if (best == kNone || candidate_lb(c) < candidate_lb(best)) best = c;
+        states_[item.state].choice = best;
+        stack.push_back({item.state, true});
+        for (auto child : {cands_[best].front, cands_[best].back})
+          if (child != kNone) stack.push_back({child, false});
+      } else {
+        State& st = states_[item.state];
+        st.ub = candidate_ub(st.choice);
+      }
+    }
+  }
+
+  // Refines `s` until its value is known or proved at least `beta` (or the budget runs out).
+  void solve(std::uint32_t s, double beta) {
+    if (settled(s, beta)) return;
+    expand(s);
+    for (;;) {
+      State& st = states_[s];
+      const double bound = std::min(beta, st.ub);
+      std::uint32_t best = kNone;
+      double least = kInf;
+      for (auto c = st.cand_begin; c < st.cand_end; ++c) {
+        const double lb = candidate_lb(c);
+        least = std::min(least, lb);
+        if (!reaches(lb, bound) && (best == kNone || lb < candidate_lb(best))) best = c;
+      }
+      st.lb = std::max(st.lb, std::min(least, st.ub));
+      if (best == kNone || out_of_budget()) return;
+      refine(s, best, bound);
+    }
+  }
+
+  const State& state(std::uint32_t s) const { return states_[s]; }
+  const Candidate& candidate(std::uint32_t c) const { return cands_[c]; }
+  const PlanePool& planes() const { return draft_.planes; }
+  double leaf_cost(const State& st) const { return leaf_term(st.frags.size(), st.cell); }
+  OptimalStats stats() {
+    stats_.states = states_.size();
+    stats_.candidates = cands_.size();
+    stats_.fragments = frag_index_.size();
+    stats_.seconds = elapsed();
+    return stats_;
+  }
+
+ private:
+  bool settled(std::uint32_t s, double beta) const {
+    const State& st = states_[s];
+    return reaches(st.lb, std::min(beta, st.ub));
+  }
+  bool known(std::uint32_t s) const { return reaches(states_[s].lb, states_[s].ub); }
+  bool reaches(double lb, double bound) const {
+    if (s_.objective == OptimalObjective::Fragments) return lb >= bound;
+    return lb >= bound - kCostSlack * std::max(1.0, std::abs(bound));
+  }
+  double lb_of(std::uint32_t s) const { return s == kNone ? 0.0 : states_[s].lb; }
+  double ub_of(std::uint32_t s) const { return s == kNone ? 0.0 : states_[s].ub; }
+  double candidate_lb(std::uint32_t c) const {
+    const Candidate& k = cands_[c];
+    return std::max(k.floor, k.own + lb_of(k.front) + lb_of(k.back));
+  }
+  double candidate_ub(std::uint32_t c) const {
+    const Candidate& k = cands_[c];
+    return k.own + ub_of(k.front) + ub_of(k.back);
+  }
+
+  // Solves the candidate's front side with the bound it must beat given the back's lower bound,
+  // then (if the front is solved) the back with what remains.
+  void refine(std::uint32_t s, std::uint32_t c, double bound) {
+    const Candidate k = cands_[c];
+    if (k.front != kNone) solve(k.front, bound - k.own - lb_of(k.back));
+    const bool front_known = k.front == kNone || known(k.front);
+    if (front_known && k.back != kNone) solve(k.back, bound - k.own - ub_of(k.front));
+    const bool back_known = k.back == kNone || known(k.back);
+    State& st = states_[s];
+    if (front_known && back_known) {
+      const double value = candidate_ub(c);
+      if (value < st.ub) {
+        st.ub = value;
+        st.choice = c;
+      }
+      cands_[c].floor = std::max(cands_[c].floor, value);
+    } else if (!budget_hit_) {
+      // The children proved their bounds; their sum reaches `bound` up to rounding.
+      cands_[c].floor = std::max(cands_[c].floor, bound);
+    }
+  }
+
+  bool out_of_budget() {
+    if (budget_hit_) return true;
+    if (states_.size() >= s_.max_states) stats_.out_of_states = budget_hit_ = true;
+    if ((++budget_checks_ & 255u) == 0 && elapsed() > s_.seconds) stats_.out_of_time = budget_hit_ = true;
+    return budget_hit_;
+  }
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+  // The objective's term of a leaf of `count` fragments (coarse and leafy shapes) in `cell`.
+  double leaf_term(std::size_t count, std::uint32_t cell) const {
+    switch (s_.objective) {
+      case OptimalObjective::Fragments: return static_cast<double>(count);
+      case OptimalObjective::EPoint: return 0.0;
+      case OptimalObjective::ELine: return cells_[cell].area_share;
+    }
+    return 0.0;
+  }
+  // The term of a node with a plane that keeps `coplanar` fragments.
+  double node_term(std::size_t coplanar, std::uint32_t cell) const {
+    switch (s_.objective) {
+      case OptimalObjective::Fragments: return static_cast<double>(coplanar);
+      case OptimalObjective::EPoint: return cells_[cell].volume_share;
+      case OptimalObjective::ELine: return cells_[cell].area_share;
+    }
+    return 0.0;
+  }
+  // A bound on f(S) before S is expanded: each fragment is stored once; a strict tree gives every
+  // non-empty cell a node with a plane; every node's cell meets its share of lines, and more in a
+  // strict tree (line_bound).
+  double initial_lb(const std::vector<std::uint32_t>& frags, std::uint32_t cell) const {
+    switch (s_.objective) {
+      case OptimalObjective::Fragments: return static_cast<double>(frags.size());
+      case OptimalObjective::EPoint: return s_.shape == Shape::Strict ? cells_[cell].volume_share : 0.0;
+      case OptimalObjective::ELine:
+        return s_.shape == Shape::Strict ? line_bound(frags, cell) : cells_[cell].area_share;
+    }
+    return 0.0;
+  }
+
+  // E_line of a strict subtree, bounded below. A convex cell holding a flat fragment f has a
+  // surface area of at least 2 area(f): its projection onto f's plane covers f, and a line normal
+  // to that plane through the projection crosses the surface twice (Cauchy); in 2D a convex cell
+  // holding a segment has a perimeter of at least twice its length. Each fragment is stored, whole
+  // or in pieces, at nodes whose plane it lies in, and fragments of different planes at different
+  // nodes; the root node's term is its own cell's. So with t(P) the largest 2 measure(f) / Area(R)
+  // over the fragments f in plane P (near-coplanar planes pooled, as the build would store them in
+  // one node):  f(S) >= share(cell) + sum over P of t(P) - max over P of t(P).
+  double line_bound(const std::vector<std::uint32_t>& frags, std::uint32_t cell) const {
+    std::vector<std::pair<std::uint32_t, double>> planes;  // a fragment of the plane, t(P)
+    for (auto id : frags) {
+      const double t = 2 * fragment_measure(id) / root_area_;
+      const auto same = std::find_if(planes.begin(), planes.end(), [&](const auto& g) {
+        return draft_.store.classify(id, draft_.planes[draft_.store.plane(g.first)], eps_) == Side::Coplanar ||
+               draft_.store.classify(g.first, draft_.planes[draft_.store.plane(id)], eps_) == Side::Coplanar;
+      });
+      if (same == planes.end()) planes.push_back({id, t});
+      else same->second = std::max(same->second, t);
+    }
+    double sum = 0, largest = 0;
+    for (const auto& g : planes) {
+      sum += g.second;
+      largest = std::max(largest, g.second);
+    }
+    return std::max(cells_[cell].area_share, cells_[cell].area_share + sum - largest);
+  }
+  double fragment_measure(std::uint32_t id) const {
+    const auto p = draft_.store.points(id);
+    if (p.size() == 2) return length(p[1] - p[0]);
+    return 0.5 * length(newell_normal(p));
+  }
+
+  void expand(std::uint32_t s) {
+    if (states_[s].expanded) return;
+    ++stats_.expansions;
+    const std::vector<std::uint32_t> ids = states_[s].frags;
+    const std::uint32_t cell = states_[s].cell;
+    const bool leaf = (s_.shape == Shape::Coarse && is_convex_set(ids, draft_.store, draft_.planes, eps_)) ||
+                      (s_.shape == Shape::Leafy && !convexity_witness(ids, draft_.store, draft_.planes, eps_));
+    if (leaf) {
+      State& st = states_[s];
+      st.lb = st.ub = leaf_term(ids.size(), cell);
+      st.choice = kLeaf;
+      st.expanded = true;
+      return;
+    }
+    const auto begin = static_cast<std::uint32_t>(cands_.size());
+    std::vector<std::uint32_t> seen;
+    for (auto id : ids) {
+      const std::uint32_t p = draft_.store.plane(id);
+      const std::uint32_t key = s_.shape == Shape::Leafy ? p : p >> 1;
+      if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+      seen.push_back(key);
+      const Plane plane = draft_.planes[p];
+      if (s_.shape == Shape::Leafy && !parts_leafy(ids, draft_.store, draft_.planes, plane, eps_)) continue;
+      cands_.push_back(cut(ids, cell, p));
+    }
+    State& st = states_[s];
+    st.cand_begin = begin;
+    st.cand_end = static_cast<std::uint32_t>(cands_.size());
+    st.expanded = true;
+  }
+
+  // The candidate of plane `p` for fragments `ids` in `cell`, as the build loop partitions them.
+  Candidate cut(const std::vector<std::uint32_t>& ids, std::uint32_t cell, std::uint32_t p) {
+    const Plane plane = draft_.planes[p];
+    std::vector<std::uint32_t> front, back;
+    std::size_t coplanar = 0;
+    for (auto id : ids) {
+      switch (draft_.store.classify(id, plane, eps_)) {
+        case Side::Front: front.push_back(id); break;
+        case Side::Back: back.push_back(id); break;
+        case Side::Coplanar:
+          if (s_.shape != Shape::Leafy) {
+            ++coplanar;
+          } else {
+            (dot(draft_.planes[draft_.store.plane(id)].n, plane.n) > 0 ? front : back).push_back(id);
+          }
+          break;
+        case Side::Spanning: {
+          const auto [f, b] = split(id, p);
+          if (f != kNone) front.push_back(f);
+          if (b != kNone) back.push_back(b);
+          break;
+        }
+      }
+    }
+    Candidate k;
+    k.plane = p;
+    k.own = node_term(coplanar, cell);
+    std::uint32_t front_cell = kNone, back_cell = kNone;
+    if (cell != kNone) {
+      if (!front.empty()) front_cell = intern_cell(cells_[cell].poly.clipped(plane, eps_));
+      if (!back.empty()) back_cell = intern_cell(cells_[cell].poly.clipped(plane.flipped(), eps_));
+    }
+    if (!front.empty()) k.front = intern_state(std::move(front), front_cell);
+    if (!back.empty()) k.back = intern_state(std::move(back), back_cell);
+    return k;
+  }
+
+  // Fragment `id` split by pooled plane `p` as FragmentStore::split does, without releasing it
+  // (memoised states still hold it); the parts interned. Memoised per (fragment, plane).
+  std::pair<std::uint32_t, std::uint32_t> split(std::uint32_t id, std::uint32_t p) {
+    const std::uint64_t key = (std::uint64_t{id} << 32) | p;
+    if (auto it = splits_.find(key); it != splits_.end()) return it->second;
+    draft_.store.view(id).copy_to(whole_);
+    const SplitKept kept = whole_.verts.size() == 2 ? split_segment_into(whole_, draft_.planes[p], eps_, front_, back_)
+                                                    : split_into(whole_, draft_.planes[p], eps_, front_, back_);
+    const std::uint32_t support = draft_.store.plane(id);
+    const std::pair<std::uint32_t, std::uint32_t> parts{kept.front ? intern_fragment(front_, support) : kNone,
+                                                         kept.back ? intern_fragment(back_, support) : kNone};
+    splits_.emplace(key, parts);
+    return parts;
+  }
+
+  std::uint64_t fragment_hash(std::uint32_t id) const {
+    std::uint64_t h = mix(draft_.store.source(id), draft_.store.plane(id));
+    for (const Vec3& v : draft_.store.points(id)) h = mix(mix(mix(h, bits(v.x)), bits(v.y)), bits(v.z));
+    return h;
+  }
+  void remember_fragment(std::uint32_t id) { frag_index_.emplace(fragment_hash(id), id); }
+  // The id of a fragment of the same source, plane and vertices as `poly`, adding it if new.
+  std::uint32_t intern_fragment(const Polygon& poly, std::uint32_t support) {
+    const std::uint32_t id = draft_.store.add(poly, support);
+    const std::uint64_t h = fragment_hash(id);
+    const auto [lo, hi] = frag_index_.equal_range(h);
+    for (auto it = lo; it != hi; ++it) {
+      const auto a = draft_.store.points(it->second), b = draft_.store.points(id);
+      if (draft_.store.source(it->second) == poly.source && draft_.store.plane(it->second) == support &&
+          std::equal(a.begin(), a.end(), b.begin(), b.end(),
+                     [](const Vec3& x, const Vec3& y) { return x.x == y.x && x.y == y.y && x.z == y.z; })) {
+        draft_.store.release(id);  // the newest id and span: the next add reuses them
+        return it->second;
+      }
+    }
+    frag_index_.emplace(h, id);
+    return id;
+  }
+
+  // As metrics/expected_cost.h measures cells: volume and surface area, or a 2D cell's area and
+  // perimeter.
+  std::pair<double, double> measures(const ConvexPolytope& cell) const {
+    if (!planar_) return {cell.volume(), cell.surface_area()};
+    const ConvexPolytope::Section s = cell.top_section();
+    return {s.area, s.perimeter};
+  }
+
+  std::uint32_t intern_cell(ConvexPolytope poly) {
+    std::uint64_t h = poly.face_count();
+    for (std::size_t f = 0; f < poly.face_count(); ++f)
+      for (const Vec3& v : poly.face(f)) h = mix(mix(mix(h, bits(v.x)), bits(v.y)), bits(v.z));
+    const auto [lo, hi] = cell_index_.equal_range(h);
+    for (auto it = lo; it != hi; ++it)
+      if (same_polytope(cells_[it->second].poly, poly)) return it->second;
+    Cell c;
+    const auto [volume, area] = measures(poly);
+    c.volume_share = volume / root_volume_;
+    c.area_share = area / root_area_;
+    c.poly = std::move(poly);
+    cells_.push_back(std::move(c));
+    const auto index = static_cast<std::uint32_t>(cells_.size() - 1);
+    cell_index_.emplace(h, index);
+    return index;
+  }
+  static bool same_polytope(const ConvexPolytope& a, const ConvexPolytope& b) {
+    if (a.face_count() != b.face_count()) return false;
+    for (std::size_t f = 0; f < a.face_count(); ++f) {
+      const auto x = a.face(f), y = b.face(f);
+      if (!std::equal(x.begin(), x.end(), y.begin(), y.end(),
+                      [](const Vec3& p, const Vec3& q) { return p.x == q.x && p.y == q.y && p.z == q.z; }))
+        return false;
+    }
+    return true;
+  }
+
+  std::uint32_t intern_state(std::vector<std::uint32_t> frags, std::uint32_t cell) {
+    std::sort(frags.begin(), frags.end());
+    std::uint64_t h = mix(0x5eed, cell);
+    for (auto id : frags) h = mix(h, id);
+    const auto [lo, hi] = state_index_.equal_range(h);
+    for (auto it = lo; it != hi; ++it) {
+      const State& st = states_[it->second];
+      if (st.cell == cell && st.frags == frags) {
+        ++stats_.memo_hits;
+        return it->second;
+      }
+    }
+    State st;
+    st.lb = initial_lb(frags, cell);
+    st.frags = std::move(frags);
+    st.cell = cell;
+    states_.push_back(std::move(st));
+    const auto index = static_cast<std::uint32_t>(states_.size() - 1);
+    state_index_.emplace(h, index);
+    return index;
+  }
+
+  const OptimalSettings& s_;
+  TreeDraft& draft_;
+  const double eps_;
+  const bool planar_;
+  std::chrono::steady_clock::time_point start_;
+  double root_volume_ = 1, root_area_ = 1;
+  std::vector<State> states_;
+  std::vector<Candidate> cands_;
+  std::vector<Cell> cells_;
+  std::unordered_multimap<std::uint64_t, std::uint32_t> state_index_, frag_index_, cell_index_;
+  std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> splits_;
+  Polygon whole_, front_, back_;
+  OptimalStats stats_;
+  std::uint64_t budget_checks_ = 0;
+  bool budget_hit_ = false;
+};
+
+// Replays the solver's choices: the plane recorded for a node's path key, taken as the plane of
+// a node's fragment that lies on it (every candidate is a fragment's own plane).
+class ReplaySplitter : public Splitter {
+ public:
+  explicit ReplaySplitter(std::shared_ptr<const std::unordered_map<std::uint64_t, Plane>> planes)
+      : planes_(std::move(planes)) {}
+  SplitChoice choose(const SplitContext& ctx) override {
+    const auto it = planes_->find(ctx.node_key);
+    if (it == planes_->end()) throw std::logic_error("optimal: the replay reached a node the solver did not cut");
+    for (auto id : ctx.ids)
+      if (ctx.planes[ctx.frags.plane(id)] == it->second) return SplitChoice::of_fragment(id);
+    throw std::logic_error("optimal: the replayed plane is no fragment's of its node");
+  }
+  std::unique_ptr<Splitter> clone() const override { return std::make_unique<ReplaySplitter>(*this); }
+
+ private:
+  std::shared_ptr<const std::unordered_map<std::uint64_t, Plane>> planes_;
+};
+
+std::uint32_t distinct_planes(const TreeDraft& draft, std::span<const std::uint32_t> ids) {
+  std::vector<std::uint32_t> keys;
+  for (auto id : ids) keys.push_back(draft.store.plane(id) >> 1);
+  std::sort(keys.begin(), keys.end());
+  return static_cast<std::uint32_t>(std::unique(keys.begin(), keys.end()) - keys.begin());
+}
+
+}  // namespace
+
+bool OptimalResult::optimal() const {
+  if (objective == OptimalObjective::Fragments) return lower >= upper;
+  return lower >= upper - kCostSlack * std::max(1.0, std::abs(upper));
+}
+
+OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSettings& settings) {
+  OptimalResult out;
+  out.objective = settings.objective;
+  out.shape = settings.shape;
+  TreeDraft draft;
+  draft.shape = settings.shape;
+  std::vector<std::uint32_t> ids = load_input(input, draft);
+  const std::uint32_t planes = distinct_planes(draft, ids);
+  if (planes > settings.max_planes)
+    throw UsageError("optimal: the input has " + std::to_string(planes) + " distinct planes, more than max_planes " +
+                     std::to_string(settings.max_planes));
+  BuildOptions options;
+  options.shape = settings.shape;
+  options.min_task_fragments = std::numeric_limits<std::size_t>::max();
+  if (ids.empty()) {
+    ReplaySplitter none(std::make_shared<std::unordered_map<std::uint64_t, Plane>>());
+    out.tree = build_tree(input, none, options);
+    return out;
+  }
+  Solver solver(settings, draft, all_segments(input));
+  const std::uint32_t root = solver.root(std::move(ids));
+  solver.greedy(root);
+  out.greedy = solver.state(root).ub;
+  solver.solve(root, kInf);
+
+  // Walk the tree of choices from the root, summing its value and recording each node's plane.
+  auto choices = std::make_shared<std::unordered_map<std::uint64_t, Plane>>();
+  struct Item {
+    std::uint32_t state;
+    std::uint64_t key;
+  };
+  std::vector<Item> stack{{root, SplitContext::kRootKey}};
+  double value = 0;
+  while (!stack.empty()) {
+    const Item item = stack.back();
+    stack.pop_back();
+    const State& st = solver.state(item.state);
+    if (st.choice == kLeaf) {
+      value += solver.leaf_cost(st);
+      continue;
+    }
+    const Candidate& c = solver.candidate(st.choice);
+    value += c.own;
+    choices->emplace(item.key, solver.planes()[c.plane]);
+    if (c.back != kNone) stack.push_back({c.back, SplitContext::child_key(item.key, false)});
+    if (c.front != kNone) stack.push_back({c.front, SplitContext::child_key(item.key, true)});
+  }
+  out.upper = value;
+  out.lower = std::min(solver.state(root).lb, value);
+  out.stats = solver.stats();
+  out.stats.planes = planes;
+  ReplaySplitter replay(choices);
+  out.tree = build_tree(input, replay, options);
+  return out;
+}
+
+}  // namespace bsp

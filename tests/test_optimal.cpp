@@ -1,0 +1,251 @@
+// Optimal autopartitions (search/optimal.h): the branch and bound against brute-force enumeration
+// of every autopartition for inputs of at most 6 fragments, in 3D and 2D, for every objective and
+// shape; the certificate tree measured by the metrics; no heuristic's autopartition below the
+// proved optimum; and budgets that stop the search with an interval holding the optimum.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "catalog.h"
+#include "common/errors.h"
+#include "experiments/optimal/optimal.h"
+#include "geometry/polytope.h"
+#include "geometry/segment2.h"
+#include "search/optimal.h"
+#include "split/registry.h"
+#include "tree/build.h"
+#include "tree/build_input.h"
+#include "validate/tree_invariants.h"
+
+using namespace bsp;
+
+namespace {
+
+// A fragment of the brute force: its polygon and its pooled supporting plane.
+struct Piece {
+  Polygon poly;
+  std::uint32_t plane;
+};
+
+// Every autopartition enumerated, no memo and no bounds: the least value over all trees of
+// `pieces` in `cell`, by the same partition rules as the build loop (tree/build.cpp).
+class BruteForce {
+ public:
+  BruteForce(OptimalObjective objective, Shape shape, const TreeDraft& draft, bool planar, const ConvexPolytope& root)
+      : objective_(objective), shape_(shape), planes_(draft.planes), eps_(draft.tol.plane_eps), planar_(planar) {
+    std::tie(root_volume_, root_area_) = measures(root);
+  }
+
+  // With `memo`, each (fragments, cell) is solved once: the same enumeration, without the
+  // branch and bound's bounds, reaching inputs where subproblems recur.
+  void use_memo() { memo_on_ = true; }
+
+  double best(const std::vector<Piece>& pieces, const ConvexPolytope& cell) const {
+    std::vector<double> key;
+    if (memo_on_) {
+      std::vector<std::vector<double>> frags;
+      for (const Piece& f : pieces) {
+        frags.push_back({static_cast<double>(f.poly.source), static_cast<double>(f.plane)});
+        for (const Vertex& v : f.poly.verts) frags.back().insert(frags.back().end(), {v.p.x, v.p.y, v.p.z});
+      }
+      std::sort(frags.begin(), frags.end());
+      for (const auto& f : frags) {
+        key.push_back(-1e300);  // a separator no coordinate takes
+        key.insert(key.end(), f.begin(), f.end());
+      }
+      if (objective_ != OptimalObjective::Fragments)
+        for (std::size_t i = 0; i < cell.face_count(); ++i)
+          for (const Vec3& v : cell.face(i)) key.insert(key.end(), {v.x, v.y, v.z});
+      if (auto it = memo_.find(key); it != memo_.end()) return it->second;
+    }
+    const double value = enumerate(pieces, cell);
+    if (memo_on_) memo_.emplace(std::move(key), value);
+    return value;
+  }
+
+ private:
+  double enumerate(const std::vector<Piece>& pieces, const ConvexPolytope& cell) const {
+    const auto [volume, area] = measures(cell);
+    if (is_leaf(pieces)) return objective_ == OptimalObjective::Fragments ? pieces.size()
+                                : objective_ == OptimalObjective::EPoint  ? 0.0
+                                                                          : area / root_area_;
+    double least = std::numeric_limits<double>::infinity();
+    std::vector<std::uint32_t> tried;
+    for (const Piece& candidate : pieces) {
+      const std::uint32_t key = shape_ == Shape::Leafy ? candidate.plane : candidate.plane >> 1;
+      if (std::find(tried.begin(), tried.end(), key) != tried.end()) continue;
+      tried.push_back(key);
+      const Plane p = planes_[candidate.plane];
+      std::vector<Piece> front, back;
+      std::size_t coplanar = 0;
+      for (const Piece& f : pieces) {
+        switch (classify(f.poly, p, eps_)) {
+          case Side::Front: front.push_back(f); break;
+          case Side::Back: back.push_back(f); break;
+          case Side::Coplanar:
+            if (shape_ != Shape::Leafy) ++coplanar;
+            else (dot(planes_[f.plane].n, p.n) > 0 ? front : back).push_back(f);
+            break;
+          case Side::Spanning: {
+            Polygon a, b;
+            const SplitKept kept = f.poly.verts.size() == 2 ? split_segment_into(f.poly, p, eps_, a, b)
+                                                            : split_into(f.poly, p, eps_, a, b);
+            if (kept.front) front.push_back({a, f.plane});
+            if (kept.back) back.push_back({b, f.plane});
+            break;
+          }
+        }
+      }
+      if (shape_ == Shape::Leafy && (front.empty() || back.empty())) continue;
+      double value = objective_ == OptimalObjective::Fragments ? coplanar
+                     : objective_ == OptimalObjective::EPoint  ? volume / root_volume_
+                                                               : area / root_area_;
+      if (!front.empty()) value += best(front, cell.clipped(p, eps_));
+      if (!back.empty()) value += best(back, cell.clipped(p.flipped(), eps_));
+      least = std::min(least, value);
+    }
+    return least;
+  }
+
+  std::pair<double, double> measures(const ConvexPolytope& c) const {
+    if (!planar_) return {c.volume(), c.surface_area()};
+    const auto s = c.top_section();
+    return {s.area, s.perimeter};
+  }
+  // Coarse: every fragment in front of or on every other's plane. Leafy: that, with coplanar
+  // fragments facing the same way.
+  bool is_leaf(const std::vector<Piece>& pieces) const {
+    if (shape_ == Shape::Strict) return false;
+    for (const Piece& a : pieces)
+      for (const Piece& b : pieces) {
+        const Side side = classify(b.poly, planes_[a.plane], eps_);
+        if (side == Side::Back || side == Side::Spanning) return false;
+        if (shape_ == Shape::Leafy && side == Side::Coplanar && dot(planes_[a.plane].n, planes_[b.plane].n) <= 0) return false;
+      }
+    return true;
+  }
+
+  OptimalObjective objective_;
+  Shape shape_;
+  const PlanePool& planes_;
+  double eps_;
+  bool planar_;
+  double root_volume_ = 1, root_area_ = 1;
+  bool memo_on_ = false;
+  mutable std::map<std::vector<double>, double> memo_;
+};
+
+double brute_force(const std::vector<Polygon>& input, OptimalObjective objective, Shape shape, double margin,
+                   bool memo = false) {
+  TreeDraft draft;
+  const std::vector<std::uint32_t> ids = load_input(input, draft);
+  std::vector<Piece> pieces;
+  for (auto id : ids) {
+    Polygon p;
+    draft.store.view(id).copy_to(p);
+    pieces.push_back({p, draft.store.plane(id)});
+  }
+  const ConvexPolytope root = ConvexPolytope::box(draft.bounds.enlarged(margin));
+  BruteForce b(objective, shape, draft, all_segments(input), root);
+  if (memo) b.use_memo();
+  return b.best(pieces, root);
+}
+
+// Small scenes of every kind the solver serves: triangle soups that cut each other, cyclic
+// overlaps no order resolves, a closed solid, and disjoint and crossing-prone 2D segments.
+std::vector<std::pair<std::string, std::vector<Polygon>>> small_scenes(std::uint32_t n) {
+  std::vector<std::pair<std::string, std::vector<Polygon>>> out;
+  for (int seed = 1; seed <= 4; ++seed) {
+    const std::string s = std::to_string(seed);
+    out.push_back({"random-triangles seed " + s,
+                   make_scene("random-triangles", {{"n", std::to_string(n)}, {"seed", s}, {"size", "0.5"}}).polygons});
+    out.push_back({"random-segments seed " + s,
+                   make_scene("random-segments", {{"n", std::to_string(n)}, {"seed", s}}).polygons});
+  }
+  out.push_back({"cyclic-overlap", make_scene("cyclic-overlap", {{"n", "6"}}).polygons});
+  return out;
+}
+
+bool close(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
+
+}  // namespace
+
+TEST(Optimal, MatchesBruteForceOnEverySmallScene) {
+  for (std::uint32_t n : {3u, 5u, 6u})
+    for (const auto& [name, input] : small_scenes(n))
+      for (auto objective : {OptimalObjective::Fragments, OptimalObjective::EPoint, OptimalObjective::ELine})
+        for (auto shape : {Shape::Strict, Shape::Coarse, Shape::Leafy}) {
+          OptimalSettings s;
+          s.objective = objective;
+          s.shape = shape;
+          const OptimalResult r = solve_optimal(input, s);
+          const double truth = brute_force(input, objective, shape, s.cell_margin);
+          const std::string what = name + " n=" + std::to_string(n) + " " + objective_name(objective) + " " + shape_name(shape);
+          ASSERT_TRUE(r.optimal()) << what;
+          EXPECT_TRUE(close(r.upper, truth)) << what << ": solver " << r.upper << ", brute force " << truth;
+          EXPECT_TRUE(close(experiments::objective_value(r.tree, input, objective, s.cell_margin), truth))
+              << what << ": the certificate's measured value differs";
+          EXPECT_EQ(check_tree_invariants(r.tree, input).violations, 0u) << what;
+        }
+}
+
+// Larger inputs, where the search meets subproblems again with other bounds to beat, against the
+// enumeration with a memo (and no bounds).
+TEST(Optimal, MatchesMemoisedEnumerationWhereSubproblemsRecur) {
+  const std::pair<OptimalObjective, std::uint32_t> cases[] = {{OptimalObjective::Fragments, 10},
+                                                              {OptimalObjective::EPoint, 8},
+                                                              {OptimalObjective::ELine, 8}};
+  for (const auto& [objective, n] : cases)
+    for (const auto& [name, input] : small_scenes(n))
+      for (auto shape : {Shape::Strict, Shape::Coarse}) {
+        OptimalSettings s;
+        s.objective = objective;
+        s.shape = shape;
+        const OptimalResult r = solve_optimal(input, s);
+        const double truth = brute_force(input, objective, shape, s.cell_margin, true);
+        const std::string what = name + " n=" + std::to_string(n) + " " + objective_name(objective) + " " + shape_name(shape);
+        ASSERT_TRUE(r.optimal()) << what;
+        EXPECT_TRUE(close(r.upper, truth)) << what << ": solver " << r.upper << ", enumeration " << truth;
+      }
+}
+
+TEST(Optimal, NoAutopartitionHeuristicBeatsTheOptimum) {
+  for (const auto& [objective, n] : {std::pair{OptimalObjective::Fragments, 12u}, std::pair{OptimalObjective::EPoint, 8u}})
+    for (const auto& [name, input] : small_scenes(n)) {
+      OptimalSettings s;
+      s.objective = objective;
+      const OptimalResult r = solve_optimal(input, s);
+      ASSERT_TRUE(r.optimal()) << name;
+      EXPECT_LE(r.upper, r.greedy) << name;
+      for (const HeuristicInfo& h : heuristics()) {
+        if (!h.autopartition) continue;
+        const Tree tree = build_tree(input, *make_splitter(h.name, {}, 1));
+        EXPECT_GE(experiments::objective_value(tree, input, objective, s.cell_margin), r.lower * (1 - 1e-12))
+            << name << " " << h.name << " " << objective_name(objective);
+      }
+    }
+}
+
+TEST(Optimal, ExhaustedBudgetGivesAnIntervalHoldingTheOptimum) {
+  const std::vector<Polygon> input =
+      make_scene("random-triangles", {{"n", "14"}, {"seed", "2"}, {"size", "0.5"}}).polygons;
+  const OptimalResult full = solve_optimal(input, {});
+  ASSERT_TRUE(full.optimal());
+  OptimalSettings tight;
+  tight.max_states = 200;
+  const OptimalResult cut = solve_optimal(input, tight);
+  EXPECT_TRUE(cut.stats.out_of_states);
+  EXPECT_LE(cut.lower, full.upper);
+  EXPECT_GE(cut.upper, full.upper);
+  EXPECT_EQ(cut.upper, static_cast<double>(cut.tree.fragments.size())) << "the interval's upper end is its tree's";
+  EXPECT_EQ(check_tree_invariants(cut.tree, input).violations, 0u);
+}
+
+TEST(Optimal, TooManyPlanesIsRefused) {
+  OptimalSettings s;
+  s.max_planes = 5;
+  EXPECT_THROW(solve_optimal(make_scene("random-triangles", {{"n", "6"}}).polygons, s), UsageError);
+}
