@@ -104,7 +104,8 @@ def header(report):
 STYLE = ("<style>body{font-family:sans-serif;margin:1em 2em}table{border-collapse:collapse;font-size:12px}"
          "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}th{background:#eee}"
          ".scroll{overflow-x:auto}img{max-width:100%}.alert{border:2px solid #c00;background:#fee;padding:4px 12px}"
-         ".ok{border:1px solid #393;background:#efe;padding:4px 12px}.note{font-size:12px;color:#444}"
+         ".ok{border:1px solid #393;background:#efe;padding:4px 12px}"
+         ".notice{border:1px solid #b80;background:#fff8e0;padding:4px 12px}.note{font-size:12px;color:#444}"
          ".cmd{font-size:12px}</style>")
 
 

@@ -2,10 +2,11 @@
 or None (sections/common.py); adding a section is a module and a line here.
 """
 from sections import (animate, changes, cost_model, csg, doom, draw, glossary, kernel, merge, occlude, optimal,
-                      segments, theory, verdicts)
+                      scoreboard, segments, theory, verdicts)
 
 SECTIONS = (
     changes.render,     # with --baseline: what changed, before the contents
+    scoreboard.render,  # which heuristic for my scene, one picture (before the contents)
     verdicts.render,    # who wins where
     cost_model.render,  # does the cost model predict?
     theory.render,      # does the theory hold? (its findings also head the page)

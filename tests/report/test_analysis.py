@@ -13,7 +13,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 import stats  # noqa: E402
 import tables  # noqa: E402
-from sections import cost_model, csg, draw, kernel, theory, verdicts  # noqa: E402
+from sections import cost_model, csg, draw, kernel, optimal, scoreboard, theory, verdicts  # noqa: E402
 
 
 def draw_run(scene, heuristic, n, seed, metrics, shape="strict", timings=None):
@@ -163,6 +163,21 @@ class Theory(unittest.TestCase):
         self.assertEqual(theory.analyse(segments(0.5))[1], [])
         self.assertEqual(len(theory.analyse(segments(1.5))[1]), 2)
 
+    def test_an_exponent_a_hair_off_agrees_within_the_margin_and_raises_no_alarm(self):
+        report = self.report(2.0)
+        report["aggregates"][0]["growth_over_sizes"]["growth"]["splits"]["ci95"] = [2.005, 2.03]
+        rows, contradictions, disagreements = theory.analyse(report)
+        self.assertEqual(tables.text_of(rows[0][5]), "within margin")
+        self.assertEqual(disagreements, [])
+        self.assertNotIn("class=alert", theory.top_list(contradictions, disagreements))
+        report["aggregates"][0]["growth_over_sizes"]["growth"]["splits"]["ci95"] = [2.04, 2.07]
+        rows, contradictions, disagreements = theory.analyse(report)
+        self.assertEqual(tables.text_of(rows[0][5]), "no")
+        self.assertEqual(len(disagreements), 1)
+        self.assertIn("class=notice", theory.top_list(contradictions, disagreements))
+        self.assertNotIn("class=alert", theory.top_list(contradictions, disagreements))
+        self.assertIn("class=alert", theory.top_list(["a bound exceeded"], disagreements))
+
     def test_a_report_without_fits_over_sizes_says_its_exponents_are_not_judged(self):
         report = self.report(2.0)
         self.assertTrue(theory.fitted(report))
@@ -245,6 +260,58 @@ class Csg(unittest.TestCase):
         report["runs"][0]["validation"]["violations"] = 1
         rows = csg.program_rows("p", csg.csg_runs(report))
         self.assertEqual({r[1]: r[2].value for r in rows}["octree (exact)"], "VIOLATION")
+
+
+def optimal_run(scene, heuristic, n, seed, gap, autopartition=1, optimal_proved=1):
+    return {"id": {"kind": "optimal", "scene": scene, "heuristic": heuristic, "shape": "strict", "n": n,
+                   "n_polygons": n, "seed": seed, "objective": "fragments"},
+            "metrics": {"gap": gap, "autopartition": autopartition, "optimal": optimal_proved, "solver_states": 10},
+            "timings": {}}
+
+
+class Scoreboard(unittest.TestCase):
+    def test_each_scene_is_read_at_its_largest_common_size_as_a_ratio_to_its_best(self):
+        runs = [draw_run("city", "a", n, s, {"fragments": f}) for n, f in ((100, 10), (300, 30)) for s in (1, 2)]
+        runs += [draw_run("city", "b", n, s, {"fragments": f}) for n, f in ((100, 20), (300, 45)) for s in (1, 2)]
+        runs += [draw_run("city", "c", 100, s, {"fragments": 5}) for s in (1, 2)]  # only at 100
+        grid = scoreboard.ratios({"runs": runs}, "metrics", "fragments")
+        self.assertEqual(grid["city"]["a"], (10, 2.0))  # n = 100: the largest size all three reached
+        self.assertEqual(grid["city"]["c"], (5, 1.0))
+        runs = [r for r in runs if r["id"]["heuristic"] != "c"]
+        grid = scoreboard.ratios({"runs": runs}, "metrics", "fragments")
+        self.assertEqual(grid["city"]["b"], (45, 1.5))  # n = 300 once c is gone
+        self.assertEqual(grid["city"]["a"], (30, 1.0))
+
+    def test_the_gap_maps_hold_geometric_means_of_the_gaps(self):
+        runs = [optimal_run("sphere", "first", 6, 1, 1.0), optimal_run("sphere", "first", 6, 2, 4.0)]
+        self.assertAlmostEqual(scoreboard.gaps({"runs": runs})["fragments"]["sphere"]["first"][1], 2.0)
+
+
+class Optimal(unittest.TestCase):
+    def runs(self, growing):
+        out = []
+        for n in (6, 10, 16):
+            for seed in (1, 2, 3):
+                out.append(optimal_run("random-triangles", "first", n, seed, 1.0 + (n / 6 if growing else 0.3)))
+                out.append(optimal_run("random-triangles", "crystal", n, seed, 1.1))
+                out.append(optimal_run("random-triangles", "halving", n, seed, 0.9, autopartition=0))
+        return out
+
+    def test_the_closest_autopartition_heuristic_is_named_and_free_planes_are_marked(self):
+        scenes = optimal.groups_of(self.runs(True))[("fragments", "strict")]
+        self.assertIn("halving" + optimal.FREE_MARK, scenes["random-triangles"])
+        self.assertIn("<b>crystal</b>", optimal.answer(scenes))  # halving's 0.9 is not an autopartition
+        t = optimal.closest_table(("fragments", "strict"), scenes, "cmd")
+        bold = [c for c in t.rows[0][1:] if isinstance(c, tables.Cell) and c.bold]
+        self.assertEqual([round(c.value, 6) for c in bold], [1.1])
+
+    def test_a_growing_gap_grows_and_a_constant_one_is_flat(self):
+        def verdicts_of(growing):
+            t = optimal.growth_table(("fragments", "strict"), optimal.groups_of(self.runs(growing))[("fragments", "strict")], "")
+            return {row[1]: row[7] for row in t.rows}
+        self.assertEqual(verdicts_of(True)["first"], "grows")
+        self.assertEqual(verdicts_of(False)["first"], "flat")
+        self.assertEqual(verdicts_of(True)["crystal"], "flat")
 
 
 class Exports(unittest.TestCase):
