@@ -12,6 +12,7 @@ const std::vector<GeneratorInfo>& generators() {
       cyclic_overlap_generator(),
       random_disjoint_generator(),
       random_segments_generator(),
+      doom_piece_generator(),
       architecture_generator(),
       city_generator(),
       terrain_generator(),

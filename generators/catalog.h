@@ -45,6 +45,7 @@ GeneratorInfo random_triangles_generator();
 GeneratorInfo cyclic_overlap_generator();
 GeneratorInfo random_disjoint_generator();
 GeneratorInfo random_segments_generator();
+GeneratorInfo doom_piece_generator();
 GeneratorInfo architecture_generator();
 GeneratorInfo city_generator();
 GeneratorInfo terrain_generator();

@@ -30,7 +30,7 @@
 #include "split/registry.h"
 #include "experiments/animate/animate.h"
 #include "experiments/doom/doom.h"
-#include "experiments/doom/iwads.h"
+#include "io/doom_iwads.h"
 #include "experiments/doom/node_builders.h"
 #include "experiments/draw/draw.h"
 #include "experiments/heuristic_choice.h"

@@ -14,7 +14,7 @@
 #include "common/errors.h"
 #include "io/wad.h"
 #include "split/registry.h"
-#include "experiments/doom/iwads.h"
+#include "io/doom_iwads.h"
 #include "experiments/doom/map_nodes.h"
 #include "experiments/doom/node_builders.h"
 
@@ -76,7 +76,7 @@ std::vector<std::string> maps_from(const Wad& wad, const std::string& text, cons
 // installs them (or in BSPBENCH_DOOM_DIR), as Doom ports search DOOMWADDIR: --iwad freedoom2.wad.
 std::string resolve_wad(const std::string& name) {
   if (name.find('/') != std::string::npos || std::filesystem::exists(name)) return name;
-  const auto installed = std::filesystem::path(experiments::doom_data_dir()) / name;
+  const auto installed = std::filesystem::path(doom_data_dir()) / name;
   return std::filesystem::exists(installed) ? installed.string() : name;
 }
 

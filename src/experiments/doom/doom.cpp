@@ -6,7 +6,7 @@
 
 #include "common/errors.h"
 #include "common/hash.h"
-#include "experiments/doom/iwads.h"
+#include "io/doom_iwads.h"
 #include "experiments/doom/node_builders.h"
 #include "experiments/heuristic_choice.h"
 #include "experiments/reference_build.h"

@@ -1,4 +1,4 @@
-#include "experiments/doom/iwads.h"
+#include "io/doom_iwads.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -8,7 +8,7 @@
 
 #include "common/errors.h"
 
-namespace bsp::experiments {
+namespace bsp {
 
 std::string doom_data_dir() {
   const char* dir = std::getenv("BSPBENCH_DOOM_DIR");
@@ -31,4 +31,4 @@ const Wad& doom_wad(const std::string& iwad) {
   return *wad;
 }
 
-}  // namespace bsp::experiments
+}  // namespace bsp
