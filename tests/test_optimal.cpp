@@ -154,8 +154,8 @@ double brute_force(const std::vector<Polygon>& input, OptimalObjective objective
   return b.best(pieces, root);
 }
 
-// Small scenes of every kind the solver serves: triangle soups that cut each other, cyclic
-// overlaps no order resolves, a closed solid, and disjoint and crossing-prone 2D segments.
+// Small scenes of the kinds the solver serves: triangle soups that cut each other, cyclic overlaps
+// no order resolves, and disjoint 2D segments long enough to cross each other's lines.
 std::vector<std::pair<std::string, std::vector<Polygon>>> small_scenes(std::uint32_t n) {
   std::vector<std::pair<std::string, std::vector<Polygon>>> out;
   for (int seed = 1; seed <= 4; ++seed) {
@@ -190,6 +190,35 @@ TEST(Optimal, MatchesBruteForceOnEverySmallScene) {
               << what << ": the certificate's measured value differs";
           EXPECT_EQ(check_tree_invariants(r.tree, input).violations, 0u) << what;
         }
+}
+
+// A triangle a few tolerances thin that a plane along its long edge cuts into two slivers, both
+// dropped: the fragment vanishes, so counting every fragment as at least one stored piece would
+// bound the optimum above its value. The search must still match the enumeration.
+TEST(Optimal, AFragmentBothOfWhosePartsAreDroppedDoesNotBreakTheBound) {
+  std::vector<Polygon> input;
+  const auto add = [&](Vec3 a, Vec3 b, Vec3 c) {
+    input.push_back(Polygon{{Vertex{a}, Vertex{b}, Vertex{c}}, static_cast<std::uint32_t>(input.size())});
+  };
+  // Cutters in the plane y = 0.5, away from the thin triangle in z; a bystander in x = 2.
+  const double y = 0.5;
+  for (double z : {-1.0, 2.0}) add({0, y, z}, {1, y, z}, {0, y, z + 0.5});
+  add({2, 0, 0}, {2, 1, 0}, {2, 0, 1});
+  Box box;
+  for (const Polygon& p : input)
+    for (const Vertex& v : p.verts) box.add(v.p);
+  const double eps = kPlaneEpsRelative * box.diagonal();
+  // The thin triangle: its long edge at y - 1.125 eps, its apex at y + 1.375 eps (2.5 eps high).
+  add({0.1, y - 1.125 * eps, 0.5}, {0.9, y - 1.125 * eps, 0.5}, {0.5, y + 1.375 * eps, 0.5});
+  for (auto shape : {Shape::Strict, Shape::Coarse}) {
+    OptimalSettings settings;
+    settings.shape = shape;
+    const OptimalResult r = solve_optimal(input, settings);
+    const double truth = brute_force(input, OptimalObjective::Fragments, shape, settings.cell_margin);
+    EXPECT_EQ(r.upper, truth) << shape_name(shape);
+    EXPECT_LE(r.lower, truth) << shape_name(shape) << ": the lower bound is above the optimum";
+    EXPECT_LT(truth, static_cast<double>(input.size())) << "the thin triangle was meant to vanish in the optimum";
+  }
 }
 
 // Larger inputs, where the search meets subproblems again with other bounds to beat, against the

@@ -118,9 +118,9 @@ TEST_F(SweepCli, ReportRendersEveryLinkedPlotAsAValidPng) {
     const fs::path png = dir_ / "html" / (*it)[1].str();
     EXPECT_TRUE(fs::exists(png) && fs::file_size(png) > 0 && is_png(png)) << png;
   }
-  // A Pareto view, a scaling plot and a cost-model scatter for each of the two scenes, merge time and
-  // result sizes for the pair.
-  EXPECT_EQ(images, 8u);
+  // The scoreboard; a Pareto view, a scaling plot and a cost-model scatter for each of the two scenes;
+  // merge time and result sizes for the pair.
+  EXPECT_EQ(images, 9u);
   EXPECT_NE(page.find("Set operations: merge cost by heuristic"), std::string::npos);
   EXPECT_NE(page.find("naylor's rank"), std::string::npos);
   // A corrupted image is caught by the check above.
@@ -299,7 +299,7 @@ TEST_F(SweepCli, ReportRendersTheSegmentBoundAndDoomSections) {
   std::size_t images = 0;
   for (auto it = std::sregex_iterator(page.begin(), page.end(), img); it != std::sregex_iterator(); ++it, ++images)
     EXPECT_TRUE(is_png(dir_ / "html" / (*it)[1].str())) << (*it)[1].str();
-  EXPECT_EQ(images, 2u);  // the bound plot, and the Doom Pareto plots (one image)
+  EXPECT_EQ(images, 3u);  // the scoreboard, the bound plot, and the Doom Pareto plots (one image)
   EXPECT_EQ(page.find("{&quot;"), std::string::npos) << "a JSON dump in the page";
   EXPECT_NE(page.find("<h3>Environment</h3>"), std::string::npos);
 }

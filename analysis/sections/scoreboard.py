@@ -3,8 +3,9 @@ depth, E_line, the measured ray cost, build time, merge cost) a heat map of heur
 coloured by each heuristic's ratio to the best heuristic on that scene (1 = best, the colour's log
 scale saturating at SATURATION), and, where the report has optimal runs, heat maps of the ratio to
 the optimal autopartition (the optimality gap) per objective. Each scene is read at its largest
-size every heuristic of it reached (means over seeds); strict float-kernel trees only, so one label
-is one heuristic. The numbers behind the colours are the tables below the picture (and in
+size every heuristic of it reached (means over seeds); the gap maps, whose scenes are small by
+necessity, at every size (geometric means over instances). Strict float-kernel trees only, so one
+label is one heuristic. The numbers behind the colours are the tables below the picture (and in
 --format exports); every other section of the page breaks them down by size, seed and shape.
 """
 import html
@@ -66,13 +67,14 @@ def ratios(report, section, key):
 
 
 def gaps(report):
-    """objective -> scene -> label -> geometric mean gap to the optimum (strict trees)."""
+    """objective -> scene -> label -> geometric mean gap to the optimum over every instance (strict trees)."""
+    name = verdicts.scene_namer(report)
     out = {}
     for r in report["runs"]:
         rid = r["id"]
         if rid.get("kind") != "optimal" or rid["shape"] != "strict" or not r["metrics"].get("gap"):
             continue
-        out.setdefault(rid["objective"], {}).setdefault(rid["scene"], {}).setdefault(rid["heuristic"], []).append(
+        out.setdefault(rid["objective"], {}).setdefault(name(rid), {}).setdefault(rid["heuristic"], []).append(
             math.log(r["metrics"]["gap"]))
     return {o: {s: {lab: (math.exp(statistics.fmean(v)),) * 2 for lab, v in labs.items()} for s, labs in scenes.items()}
             for o, scenes in out.items()}

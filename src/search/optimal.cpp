@@ -1,10 +1,12 @@
 #include "search/optimal.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <tuple>
 #include <unordered_map>
 #include <vector>
@@ -43,6 +45,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The expected costs are sums of doubles whose order differs between a bound and the value it
 // bounds: a bound within this relative distance of another counts as reaching it.
 constexpr double kCostSlack = 1e-12;
+// The clock is read at one budget check in 256: a check costs a few nanoseconds, a clock read tens.
+constexpr std::uint64_t kClockEvery = 255;
 
 // One way to cut a state: the plane of one of its fragments and what it leaves on each side.
 struct Candidate {
@@ -73,8 +77,8 @@ std::uint64_t bits(double d) { return std::bit_cast<std::uint64_t>(d == 0.0 ? 0.
 
 class Solver {
  public:
-  Solver(const OptimalSettings& settings, TreeDraft& draft, bool planar)
-      : s_(settings), draft_(draft), eps_(draft.tol.plane_eps), planar_(planar) {
+  Solver(const OptimalSettings& settings, TreeDraft& draft, bool planar, std::uint32_t planes)
+      : s_(settings), draft_(draft), eps_(draft.tol.plane_eps), planar_(planar), planes_(planes) {
     start_ = std::chrono::steady_clock::now();
   }
 
@@ -197,7 +201,7 @@ class Solver {
   bool out_of_budget() {
     if (budget_hit_) return true;
     if (states_.size() >= s_.max_states) stats_.out_of_states = budget_hit_ = true;
-    if ((++budget_checks_ & 255u) == 0 && elapsed() > s_.seconds) stats_.out_of_time = budget_hit_ = true;
+    if ((++budget_checks_ & kClockEvery) == 0 && elapsed() > s_.seconds) stats_.out_of_time = budget_hit_ = true;
     return budget_hit_;
   }
   double elapsed() const {
@@ -222,45 +226,37 @@ class Solver {
     }
     return 0.0;
   }
-  // A bound on f(S) before S is expanded: each fragment is stored once; a strict tree gives every
-  // non-empty cell a node with a plane; every node's cell meets its share of lines, and more in a
-  // strict tree (line_bound).
+  // A bound on f(S) before S is expanded: each sturdy fragment leaves at least one stored piece;
+  // a strict tree gives every non-empty cell a node with a plane; every node's cell meets its share
+  // of lines.
   double initial_lb(const std::vector<std::uint32_t>& frags, std::uint32_t cell) const {
     switch (s_.objective) {
-      case OptimalObjective::Fragments: return static_cast<double>(frags.size());
+      case OptimalObjective::Fragments:
+        return static_cast<double>(std::count_if(frags.begin(), frags.end(), [&](auto id) { return sturdy(id); }));
       case OptimalObjective::EPoint: return s_.shape == Shape::Strict ? cells_[cell].volume_share : 0.0;
-      case OptimalObjective::ELine:
-        return s_.shape == Shape::Strict ? line_bound(frags, cell) : cells_[cell].area_share;
+      case OptimalObjective::ELine: return cells_[cell].area_share;
     }
     return 0.0;
   }
 
-  // E_line of a strict subtree, bounded below. A convex cell holding a flat fragment f has a
-  // surface area of at least 2 area(f): its projection onto f's plane covers f, and a line normal
-  // to that plane through the projection crosses the surface twice (Cauchy); in 2D a convex cell
-  // holding a segment has a perimeter of at least twice its length. Each fragment is stored, whole
-  // or in pieces, at nodes whose plane it lies in, and fragments of different planes at different
-  // nodes; the root node's term is its own cell's. So with t(P) the largest 2 measure(f) / Area(R)
-  // over the fragments f in plane P (near-coplanar planes pooled, as the build would store them in
-  // one node):  f(S) >= share(cell) + sum over P of t(P) - max over P of t(P).
-  double line_bound(const std::vector<std::uint32_t>& frags, std::uint32_t cell) const {
-    std::vector<std::pair<std::uint32_t, double>> planes;  // a fragment of the plane, t(P)
-    for (auto id : frags) {
-      const double t = 2 * fragment_measure(id) / root_area_;
-      const auto same = std::find_if(planes.begin(), planes.end(), [&](const auto& g) {
-        return draft_.store.classify(id, draft_.planes[draft_.store.plane(g.first)], eps_) == Side::Coplanar ||
-               draft_.store.classify(g.first, draft_.planes[draft_.store.plane(id)], eps_) == Side::Coplanar;
-      });
-      if (same == planes.end()) planes.push_back({id, t});
-      else same->second = std::max(same->second, t);
-    }
-    double sum = 0, largest = 0;
-    for (const auto& g : planes) {
-      sum += g.second;
-      largest = std::max(largest, g.second);
-    }
-    return std::max(cells_[cell].area_share, cells_[cell].area_share + sum - largest);
+  // Whether some piece of the fragment survives every tree. A split drops a part as a sliver when
+  // its area over its longest edge is below eps (a segment part: shorter than eps), and the k other
+  // planes cut a fragment into at most as many pieces as their lines make cells in its plane,
+  // k²/2 + k/2 + 1 (k + 1 for a segment). Every piece dropped has an area below eps times the
+  // fragment's diameter, which no piece's longest edge exceeds, so a fragment whose area over its
+  // diameter is at least eps times that many pieces (with a factor 2 for the rounding of cut
+  // points) keeps one. Inputs away from the tolerance have no fragment that is not sturdy.
+  bool sturdy(std::uint32_t id) const {
+    const auto p = draft_.store.points(id);
+    const double k = planes_;
+    if (p.size() == 2) return length(p[1] - p[0]) >= 2 * eps_ * (k + 1);
+    const double reach = 2 * eps_ * (k * k / 2 + k / 2 + 1);
+    double diameter = 0;
+    for (const Vec3& a : p)
+      for (const Vec3& b : p) diameter = std::max(diameter, length(b - a));
+    return diameter > 0 && fragment_measure(id) / diameter >= reach;
   }
+
   double fragment_measure(std::uint32_t id) const {
     const auto p = draft_.store.points(id);
     if (p.size() == 2) return length(p[1] - p[0]);
@@ -436,6 +432,7 @@ class Solver {
   TreeDraft& draft_;
   const double eps_;
   const bool planar_;
+  const std::uint32_t planes_;  // distinct planes of the input
   std::chrono::steady_clock::time_point start_;
   double root_volume_ = 1, root_area_ = 1;
   std::vector<State> states_;
@@ -501,7 +498,7 @@ OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSetting
     out.tree = build_tree(input, none, options);
     return out;
   }
-  Solver solver(settings, draft, all_segments(input));
+  Solver solver(settings, draft, all_segments(input), planes);
   const std::uint32_t root = solver.root(std::move(ids));
   solver.greedy(root);
   out.greedy = solver.state(root).ub;

@@ -19,7 +19,8 @@
 // objectives also the cell, interned by its exact vertices), so a set reached along two paths is
 // solved once. Every memo entry keeps an interval [lb, ub]: ub is achieved by a known subtree, lb
 // is proved. Bounds [LandDoig1960]: before a subproblem is expanded its lb is admissible
-// without search (|S| fragments; its own cell's term for the cost objectives); a candidate's bound
+// without search (its fragments too wide for the tolerance to drop; its own cell's term for the
+// cost objectives); a candidate's bound
 // is own(P) + lb(front) + lb(back), and a subproblem's lb is the least of its candidates'. A greedy
 // tree (each cell cut by the candidate of least bound) gives every state it meets a first ub; the
 // depth-first search then refines candidates in order of their bounds, each with the bound it
@@ -82,7 +83,7 @@ struct OptimalResult {
   Shape shape = Shape::Strict;
   // No autopartition of this shape has a value below `lower`; `tree` has the value `upper`.
   // Fragments are integers; the expected costs are sums of doubles, so their bounds hold to the
-  // rounding of those sums (a relative 1e-12, the tolerance of `optimal`).
+  // rounding of those sums: a relative 1e-12 per level of the search, which `optimal` allows.
   double lower = 0;
   double upper = 0;
   double greedy = 0;  // the first incumbent: the greedy tree of least one-level bound
@@ -91,8 +92,7 @@ struct OptimalResult {
   OptimalStats stats;
 };
 
-// Throws UsageError for a shape the objective cannot use (none yet: every shape works with every
-// objective), too many planes, or a flat scene with E_point / E_line and margin 0.
+// Throws UsageError for too many planes, or a flat scene with E_point / E_line and margin 0.
 OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSettings& settings);
 
 }  // namespace bsp

@@ -30,6 +30,12 @@
 
 namespace bsp::experiments {
 
+// How far the certificate's measured value may lie from the solver's: none for fragments; for the
+// expected costs, the rounding of sums taken in another order.
+inline constexpr double kCertificateRelative = 1e-9;
+// Whether `measured` (the metrics' value of the optimum's tree) agrees with the solver's `upper`.
+bool certificate_agrees(double measured, double upper);
+
 struct GapSettings {
   OptimalSettings solver;
   std::vector<HeuristicChoice> heuristics;  // compared with the optimum (choices_or_all)
@@ -45,7 +51,7 @@ struct HeuristicGap {
   std::string label;
   bool autopartition = true;
   double value = 0;
-  double gap_lower = 0, gap_upper = 0;  // value / upper and value / lower (value / 0 is reported as 0)
+  double gap_lower = 0, gap_upper = 0;  // value / upper and value / lower (0 when the bound is 0: no gap known)
 };
 
 struct GapComparison {
