@@ -486,7 +486,7 @@ TEST_F(SweepCli, BadSuiteFilesAreOneLineErrorsWithTheirJsonPath) {
       {R"({"name": "x", "doom": [{"iwads": ["freedoom2.wad"], "heuristics": ["doom-splits", "doom-splits"]}]})",
        "s.json: doom[0].heuristics[1]: repeats doom[0].heuristics[0]"},
       {R"({"name": "quick", "blocks": [{)" + ok_block + "}]}", "s.json: name: 'quick' is a built-in suite"},
-      {R"({"name": "x"})", "s.json: no runs: give \"blocks\", \"merges\", \"animations\", \"occlusions\", \"doom\", \"kernels\" or \"csg\""},
+      {R"({"name": "x"})", "s.json: no runs: give \"blocks\", \"merges\", \"animations\", \"occlusions\", \"doom\", \"kernels\", \"csg\" or \"optimals\""},
       {R"({"name": "x", "merges": [{"pairs": ["spheres"], "ops": ["unite"], "sizes": [50]}]})",
        "s.json: merges[0].ops[0]: unknown set operation 'unite'"},
       {R"({"name": "x", "occlusions": [{"scenes": ["random-segments"], "sizes": [100]}]})",

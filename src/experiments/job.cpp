@@ -1,10 +1,18 @@
 #include "experiments/job.h"
 
 #include <chrono>
+#include <cstdio>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
 namespace bsp::experiments {
+
+std::string exact_text(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", x);
+  return text;
+}
 
 double wall_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();

@@ -79,6 +79,9 @@ nlohmann::json make_record(const Job& job, nlohmann::json id, nlohmann::json met
                            double start_seconds);
 // Seconds on a steady clock, for make_record's start.
 double wall_seconds();
+// A double as a command line reads it back exactly (17 significant digits): the commands that
+// repeat a job carry its settings so.
+std::string exact_text(double x);
 
 // A record field and where it stands in a stats struct's JSON (a JSON pointer into its to_json, the
 // one place the struct becomes JSON), so a record takes its fields from there instead of copying

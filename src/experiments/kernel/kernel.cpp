@@ -245,17 +245,6 @@ KernelJob::KernelJob(SceneRun scene, double plane_eps_relative, double perturbat
   set_identity(h.hex(), scene_.n);
 }
 
-namespace {
-
-// A double as the command line reads it back exactly.
-std::string exact_text(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
-
-}  // namespace
-
 json KernelJob::identity() const {
   json id = scene_.identity("kernel");
   std::string command = "bspbench kernel --scene " + scene_.scene;

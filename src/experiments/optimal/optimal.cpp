@@ -176,13 +176,6 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
   return b;
 }
 
-// A double as the command line reads it back exactly.
-std::string exact_text(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", x);
-  return text;
-}
-
 // An instance's optimum and the solver's timed batches beside their reference.
 struct SharedOptimum {
   CheckedOptimum checked;

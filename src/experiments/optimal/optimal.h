@@ -96,6 +96,7 @@ class OptimalJob final : public Job {
   std::string_view kind() const override { return "optimal"; }
   nlohmann::json identity() const override;
   nlohmann::json run(const RunContext& context) const override;
+  const SceneRun& scene() const { return scene_; }
 
  private:
   OptimalSettings solver_settings() const;
