@@ -150,25 +150,20 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
   b->seeds = r.seeds(j, path);
   if (const json* list = r.optional(j, "objectives")) {
     b->objectives.clear();
-    std::map<std::string, std::string> seen;
-    r.each(*list, child(path, "objectives"), "leave \"objectives\" out for fragments", [&](const json& o, const std::string& p) {
-      const std::string name = r.string(o, p);
-      const auto objective = objective_named(name);
-      if (!objective) r.fail(p, "unknown objective '" + name + "' (known: fragments, e_point, e_line)");
-      r.once(seen, name, p);
-      b->objectives.push_back(*objective);
-    });
+    for (const auto& name : r.names(*list, child(path, "objectives"), "leave \"objectives\" out for fragments",
+                                    [](const std::string& o) {
+                                      if (!objective_named(o))
+                                        throw UsageError("unknown objective '" + o + "' (known: fragments, e_point, e_line)");
+                                    }))
+      b->objectives.push_back(*objective_named(name));
   }
   if (const json* list = r.optional(j, "shapes")) {
     b->shapes.clear();
-    std::map<std::string, std::string> seen;
-    r.each(*list, child(path, "shapes"), "leave \"shapes\" out for strict trees", [&](const json& s, const std::string& p) {
-      const std::string name = r.string(s, p);
-      const auto shape = shape_named(name);
-      if (!shape) r.fail(p, "unknown shape '" + name + "' (known: strict, coarse, leafy)");
-      r.once(seen, name, p);
-      b->shapes.push_back(*shape);
-    });
+    for (const auto& name : r.names(*list, child(path, "shapes"), "leave \"shapes\" out for strict trees",
+                                    [](const std::string& s) {
+                                      if (!shape_named(s)) throw UsageError("unknown shape '" + s + "' (known: strict, coarse, leafy)");
+                                    }))
+      b->shapes.push_back(*shape_named(name));
   }
   if (const json* m = r.optional(j, "max_states")) b->max_states = r.integer(*m, child(path, "max_states"), 1, 1'000'000'000);
   if (const json* t = r.optional(j, "seconds")) b->seconds = r.real(*t, child(path, "seconds"), 0, 86'400, true);
