@@ -17,6 +17,7 @@ const std::vector<HeuristicInfo>& heuristics() {
       halving_heuristic(),
       octree_heuristic(),
       sah_heuristic(),
+      zennode_heuristic(),
   };
   return all;
 }

@@ -42,5 +42,6 @@ HeuristicInfo naylor_heuristic();
 HeuristicInfo halving_heuristic();
 HeuristicInfo octree_heuristic();
 HeuristicInfo sah_heuristic();
+HeuristicInfo zennode_heuristic();
 
 }  // namespace bsp
