@@ -18,6 +18,7 @@
 #include "catalog.h"
 #include "common/errors.h"
 #include "split/parallel_groups.h"
+#include "search/tree_search.h"
 #include "split/registry.h"
 #include "tree/build.h"
 #include "validate/tree_invariants.h"
@@ -398,9 +399,12 @@ TEST(HeuristicCatalog, JsonListsEveryHeuristicWithItsParametersAndDefaults) {
   while (const std::size_t got = fread(buf.data(), 1, buf.size(), pipe)) text.append(buf.data(), got);
   ASSERT_EQ(pclose(pipe), 0);
   const auto list = nlohmann::json::parse(text);
-  ASSERT_EQ(list.size(), heuristics().size());
+  // The heuristics, then the searching builders, which take names and parameters alike.
+  std::vector<HeuristicInfo> all = heuristics();
+  for (const auto& s : searches()) all.push_back({s.name, s.summary, s.params, true, {}});
+  ASSERT_EQ(list.size(), all.size());
   for (std::size_t i = 0; i < list.size(); ++i) {
-    const auto& h = heuristics()[i];
+    const auto& h = all[i];
     EXPECT_EQ(list[i]["name"], h.name);
     EXPECT_EQ(list[i]["autopartition"], h.autopartition);
     ASSERT_EQ(list[i]["params"].size(), h.params.size()) << h.name;

@@ -1,5 +1,5 @@
 """Doom runs: our heuristics beside the external node builders and the shipped nodes. Totals per
-builder over all maps, the two presets' targets judged, splits against depth and against CPU time
+builder over all maps, the presets' targets judged, splits against depth and against CPU time
 (doom.png), splits and depth per map, and the structural check's findings per builder.
 """
 import html
@@ -16,6 +16,8 @@ from tables import Cell, Column, Table
 # The doom-splits preset's target: ZokumBSP 1.1.1 with -na=s (fewest splits), built from source and
 # run on this machine on the 68 Freedoom maps (both IWADs), made 23,491 splits in total.
 ZOKUM = {"splits": 23491, "iwads": {"freedoom1.wad", "freedoom2.wad"}, "maps": 68}
+# The doom-search preset may spend this many times ZDBSP's CPU time on the same maps.
+SEARCH_CPU_FACTOR = 10
 KIND_MARK = {"heuristic": "", "external": " (external)", "shipped": " (the WAD's own nodes)"}
 KIND_MARKER = {"heuristic": "o", "external": "s", "shipped": "D"}
 
@@ -124,6 +126,7 @@ def margin(measured, reference, unit=""):
 def target_rows(totals):
     """The two presets' targets, each condition measured: (builder, condition, measured, reference, met, by)."""
     zdbsp = next((t for t in totals if t["name"] == "zdbsp"), None)
+    shipped = next((t for t in totals if t["name"] == "shipped"), None)
     rows = []
     for t in totals:
         preset = t["name"].partition(" (seed ")[0]  # every seed of a preset is judged
@@ -137,18 +140,37 @@ def target_rows(totals):
             if zdbsp and t["cpu"] is not None and zdbsp["cpu"] is not None:
                 rows.append(against_zdbsp(t, zdbsp, "CPU time no more than ZDBSP's in the same run", "cpu",
                                           lambda a, b: a <= b, " s"))
+        if preset == "doom-search":
+            comparable = on_zokum_maps(t)
+            rows.append((t["name"], f"fewer splits than ZokumBSP 1.1.1 -na=s's {ZOKUM['splits']:,} (the "
+                         f"{ZOKUM['maps']} Freedoom maps, measured on this machine)", t["splits"], ZOKUM["splits"],
+                         t["splits"] < ZOKUM["splits"] if comparable else None,
+                         margin(t["splits"], ZOKUM["splits"]) if comparable
+                         else f"not comparable: {t['built']} maps built, not the {ZOKUM['maps']}"))
+            if shipped:
+                rows.append(against(t, shipped, "shipped nodes", "fewer splits than the shipped nodes", "splits",
+                                    lambda a, b: a < b))
+            if zdbsp and t["cpu"] is not None and zdbsp["cpu"] is not None:
+                rows.append(against_zdbsp(t, {**zdbsp, "cpu": SEARCH_CPU_FACTOR * zdbsp["cpu"]},
+                                          f"CPU time at most {SEARCH_CPU_FACTOR}× ZDBSP's in the same run", "cpu",
+                                          lambda a, b: a <= b, " s"))
         if preset == "doom-depth" and zdbsp:
             rows.append(against_zdbsp(t, zdbsp, "mean max depth at most ZDBSP's", "max_depth", lambda a, b: a <= b))
             rows.append(against_zdbsp(t, zdbsp, "fewer splits than ZDBSP", "splits", lambda a, b: a < b))
     return rows
 
 
+def against(total, other, other_name, condition, field, holds, unit=""):
+    """A target row against another builder's total, judged only when both built the same maps."""
+    mine, ref = total[field], other[field]
+    if total["mapset"] != other["mapset"]:
+        return total["name"], condition, mine, ref, None, f"not comparable: not the maps the {other_name} cover"
+    return total["name"], condition, mine, ref, holds(mine, ref), margin(mine, ref, unit)
+
+
 def against_zdbsp(total, zdbsp, condition, field, holds, unit=""):
     """A target row against ZDBSP's total, judged only when both built the same maps."""
-    mine, ref = total[field], zdbsp[field]
-    if total["mapset"] != zdbsp["mapset"]:
-        return total["name"], condition, mine, ref, None, "not comparable: not the maps ZDBSP built"
-    return total["name"], condition, mine, ref, holds(mine, ref), margin(mine, ref, unit)
+    return against(total, zdbsp, "ZDBSP run", condition, field, holds, unit)
 
 
 def targets_table(rows):
@@ -163,7 +185,7 @@ def targets_table(rows):
 def targets_html(totals):
     rows = target_rows(totals)
     if not rows:
-        return "<p>Targets not judged: neither preset (doom-splits, doom-depth) ran, or ZDBSP did not.</p>", []
+        return "<p>Targets not judged: no preset (doom-splits, doom-depth, doom-search) ran, or ZDBSP did not.</p>", []
     verdicts = []
     for preset in dict.fromkeys(r[0] for r in rows):
         met = [r[4] for r in rows if r[0] == preset]
@@ -177,7 +199,7 @@ def plot_doom(totals, path):
     """Splits against mean max depth and against CPU seconds, a point per builder, the front ringed."""
     rows = math.ceil(len(totals) / 5)
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5 + 0.25 * rows))
-    colours = plt.get_cmap("tab20").colors  # 14 builders: distinct colours
+    colours = plt.get_cmap("tab20").colors  # up to 20 builders: distinct colours
     for ax, field, title in ((axes[0], "max_depth", "mean max depth over maps"),
                              (axes[1], "cpu", "CPU seconds, all maps")):
         pts = [(t, t["splits"], t[field]) for t in totals if t[field] is not None and t["built"]]

@@ -25,6 +25,7 @@
 #include "io/mesh_reader.h"
 #include "metrics/statistics.h"
 #include "metrics/tree_metrics.h"
+#include "experiments/heuristic_choice.h"
 #include "split/registry.h"
 #include "tree/build.h"
 #include "validate/exact_order_check.h"
@@ -61,7 +62,10 @@ std::vector<std::string> heuristic_list(const std::string& text) {
     return out;
   }
   std::stringstream in(text);
-  for (std::string name; std::getline(in, name, ',');) out.push_back(find_heuristic(name).name);
+  for (std::string name; std::getline(in, name, ',');) {
+    experiments::params_of(name);  // rejects an unknown name now
+    out.push_back(name);
+  }
   if (out.empty()) throw UsageError("--heuristics wants all or a comma-separated list of names");
   return out;
 }

@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "common/errors.h"
 #include "io/wad.h"
+#include "experiments/heuristic_choice.h"
 #include "split/registry.h"
 #include "io/doom_iwads.h"
 #include "experiments/doom/map_nodes.h"
@@ -41,9 +42,9 @@ DoomBuilder heuristic_builder(const std::string& spec) {
   if (const auto preset = experiments::doom_preset(spec)) return *preset;
   const auto parts = split_list(spec, ':');
   if (parts.empty()) throw UsageError("--heuristics has an empty entry");
-  DoomBuilder b{DoomBuilder::Kind::Heuristic, find_heuristic(parts[0]).name, {}, {}};
+  DoomBuilder b{DoomBuilder::Kind::Heuristic, parts[0], {}, {}};
   for (std::size_t i = 1; i < parts.size(); ++i) b.params.push_back(parse_assignment(parts[i]));
-  make_splitter(b.name, b.params, 1);  // rejects unknown parameters and values out of range now
+  experiments::HeuristicChoice::of(b.name, b.params);  // rejects unknown names, parameters and values now
   return b;
 }
 
@@ -139,8 +140,9 @@ Command doom_command() {
             "up in BSPBENCH_DOOM_DIR, default /usr/share/games/doom"},
            {"--maps all|MAP,...", "the maps to build (default all)"},
            {"--heuristics all|NAME[:k=v...][,...]",
-            "our heuristics, each with optional parameters, or the presets doom-splits (min-relation, 64 candidates, "
-            "min_relation 0.05) and doom-depth (min_relation 0.3); all: every heuristic and both presets"},
+            "our heuristics or searches (bspbench catalog), each with optional parameters, or the presets doom-splits "
+            "(min-relation, 64 candidates, min_relation 0.05), doom-depth (min_relation 0.3) and doom-search (the best "
+            "of four zennode builds, x4 from 200 to 3000); all: every heuristic and the presets"},
            {"--builders zdbsp,glbsp", "external node builders to run on the same maps, each map in its own PWAD"},
            {"--out DIR", "write each map rebuilt by each heuristic as DIR/HEURISTIC/MAP.wad"},
            {"--seed S", "seed of the heuristics' randomness (default 1)"},

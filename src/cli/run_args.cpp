@@ -11,7 +11,7 @@
 #include "io/mesh_reader.h"
 #include "geometry/segment2.h"
 #include "mesh_scenes.h"
-#include "split/registry.h"
+#include "experiments/heuristic_choice.h"
 
 namespace bsp::cli {
 
@@ -69,7 +69,7 @@ TreeArgs tree_args_from(Args& args, std::uint64_t seed) {
   if (!heuristic) throw UsageError("missing option --heuristic");
   t.heuristic = *heuristic;
   for (const auto& kv : params) t.params.push_back(parse_assignment(kv));
-  find_heuristic(t.heuristic);
+  experiments::params_of(t.heuristic);
   return t;
 }
 
@@ -112,9 +112,8 @@ Scene scene_or_file(const std::string& spec, const std::vector<std::string>& par
 }
 
 Tree build_from_args(const Scene& scene, const TreeArgs& t) {
-  std::unique_ptr<Splitter> splitter;
-  if (!t.options.incremental) splitter = make_splitter(t.heuristic, t.params, t.seed);
-  return experiments::build_drawing(scene.polygons, splitter.get(), t.options);
+  if (t.options.incremental) return experiments::build_drawing(scene.polygons, nullptr, t.options);
+  return experiments::HeuristicChoice::of(t.heuristic, t.params).build(scene.polygons, t.options, t.seed);
 }
 
 Kernel kernel_from(Args& args, const TreeArgs& t, const Scene& scene) {
@@ -129,7 +128,7 @@ Kernel kernel_from(Args& args, const TreeArgs& t, const Scene& scene) {
 }
 
 ExactTree build_exact_from_args(const Scene& scene, const TreeArgs& t) {
-  const std::unique_ptr<Splitter> splitter = make_splitter(t.heuristic, t.params, t.seed);
+  const auto splitter = experiments::HeuristicChoice::of(t.heuristic, t.params).splitter(t.seed);
   return build_exact_tree(scene.polygons, *splitter, t.options);
 }
 
@@ -137,7 +136,7 @@ nlohmann::json describe_run(const Scene& scene, const TreeArgs& t) {
   const nlohmann::json s = scene_json(scene);
   const nlohmann::json params = t.options.incremental
                                     ? nlohmann::json::object()
-                                    : ParamSet::resolve(find_heuristic(t.heuristic).params, t.params, t.heuristic).to_json();
+                                    : ParamSet::resolve(experiments::params_of(t.heuristic), t.params, t.heuristic).to_json();
   nlohmann::json out = {{"scene", scene.name},
           {"scene_params", s["params"]},
           {"scene_hash", s["hash"]},

@@ -2,7 +2,10 @@
 
 #include <string_view>
 
+#include "common/errors.h"
+#include "search/tree_search.h"
 #include "split/registry.h"
+#include "tree/build.h"
 
 namespace bsp::experiments {
 
@@ -27,12 +30,25 @@ HeuristicChoice HeuristicChoice::parse(const std::string& label) {
   return choice;
 }
 
+const std::vector<ParamSpec>& params_of(const std::string& name) {
+  if (const SearchInfo* s = find_search(name)) return s->params;
+  try {
+    return find_heuristic(name).params;
+  } catch (const UsageError& e) {
+    std::string known;
+    for (const auto& s : searches()) known += ", " + s.name;
+    std::string message = e.what();
+    message.insert(message.size() - 1, known);  // inside the parenthesis that lists the heuristics
+    throw UsageError(message);
+  }
+}
+
 HeuristicChoice HeuristicChoice::of(const std::string& name, ParamAssignments params) {
-  const HeuristicInfo& h = find_heuristic(name);
-  ParamSet resolved = ParamSet::resolve(h.params, params, "heuristic " + h.name);
-  std::string label = h.name;
+  const bool search = find_search(name) != nullptr;
+  ParamSet resolved = ParamSet::resolve(params_of(name), params, (search ? "search " : "heuristic ") + name);
+  std::string label = name;
   for (std::size_t i = 0; i < params.size(); ++i) label += (i == 0 ? ":" : ",") + params[i].first + "=" + params[i].second;
-  return {std::move(label), h.name, std::move(params), std::move(resolved)};
+  return {std::move(label), name, search, std::move(params), std::move(resolved)};
 }
 
 std::vector<HeuristicChoice> choices_or_all(const std::vector<std::string>& labels) {
@@ -50,7 +66,14 @@ std::string HeuristicChoice::arguments() const {
 }
 
 std::unique_ptr<Splitter> HeuristicChoice::splitter(std::uint64_t seed) const {
+  if (search)
+    throw UsageError(name + " is a searching builder: it builds whole trees, and this builds per node with a heuristic");
   return find_heuristic(name).make(resolved, seed);
+}
+
+Tree HeuristicChoice::build(std::span<const Polygon> input, const BuildOptions& options, std::uint64_t seed) const {
+  if (search) return find_search(name)->build(input, options, resolved, seed);
+  return build_tree(input, *splitter(seed), options);
 }
 
 }  // namespace bsp::experiments

@@ -1,6 +1,9 @@
 #pragma once
 // A heuristic as a suite or a job names it: a registered name, "NAME", or a name with parameters,
-// "NAME:k=v,k=v" (e.g. "weighted:candidates=0", the exhaustive variant). The whole text is the
+// "NAME:k=v,k=v" (e.g. "weighted:candidates=0", the exhaustive variant). The name is a heuristic
+// (split/registry.h) or a searching builder (search/tree_search.h, e.g. "beam:base=zennode"):
+// both build trees through build(); only a heuristic has a splitter() for the commands that
+// build per node (merging, updating, the exact kernel). The whole text is the
 // label that names the runs in reports and in the gate's groups, so a variant is compared with
 // itself only. Parsed and resolved against the registry once, when a job is made.
 #include <cstdint>
@@ -9,7 +12,10 @@
 #include <vector>
 
 #include "common/params.h"
+#include "geometry/polygon.h"
 #include "split/splitter.h"
+#include "tree/build_options.h"
+#include "tree/tree.h"
 
 namespace bsp::experiments {
 
@@ -24,6 +30,7 @@ HeuristicLabel split_heuristic_label(const std::string& label);
 struct HeuristicChoice {
   std::string label;
   std::string name;          // as registered
+  bool search = false;       // a searching builder, not a heuristic
   ParamAssignments params;   // as the label gives them
   ParamSet resolved;         // every parameter, defaults included: what decides the trees
 
@@ -33,11 +40,18 @@ struct HeuristicChoice {
   static HeuristicChoice of(const std::string& name, ParamAssignments params);
   // " --heuristic NAME --param k=v ...": how a command is told this choice.
   std::string arguments() const;
+  // Throws UsageError for a search: it has no per-node splitter.
   std::unique_ptr<Splitter> splitter(std::uint64_t seed) const;
+  // The tree it builds from `input` (recursively; a search builds several and keeps one).
+  Tree build(std::span<const Polygon> input, const BuildOptions& options, std::uint64_t seed) const;
 };
 
+// The parameters a heuristic or a search takes; throws UsageError naming both registries' names.
+const std::vector<ParamSpec>& params_of(const std::string& name);
+
 // The choices `labels` name, or every registered heuristic when there are none (so a heuristic
-// added to the registry is swept without further wiring). Throws as parse does.
+// added to the registry is swept without further wiring; searches, which cost many builds, only
+// when named). Throws as parse does.
 std::vector<HeuristicChoice> choices_or_all(const std::vector<std::string>& labels);
 
 }  // namespace bsp::experiments

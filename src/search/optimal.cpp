@@ -15,6 +15,7 @@
 #include "common/rng.h"
 #include "geometry/polytope.h"
 #include "geometry/segment2.h"
+#include "search/decisions.h"
 #include "split/splitter.h"
 #include "tree/build.h"
 #include "tree/build_input.h"
@@ -446,25 +447,6 @@ class Solver {
   bool budget_hit_ = false;
 };
 
-// Replays the solver's choices: the plane recorded for a node's path key, taken as the plane of
-// a node's fragment that lies on it (every candidate is a fragment's own plane).
-class ReplaySplitter : public Splitter {
- public:
-  explicit ReplaySplitter(std::shared_ptr<const std::unordered_map<std::uint64_t, Plane>> planes)
-      : planes_(std::move(planes)) {}
-  SplitChoice choose(const SplitContext& ctx) override {
-    const auto it = planes_->find(ctx.node_key);
-    if (it == planes_->end()) throw std::logic_error("optimal: the replay reached a node the solver did not cut");
-    for (auto id : ctx.ids)
-      if (ctx.planes[ctx.frags.plane(id)] == it->second) return SplitChoice::of_fragment(id);
-    throw std::logic_error("optimal: the replayed plane is no fragment's of its node");
-  }
-  std::unique_ptr<Splitter> clone() const override { return std::make_unique<ReplaySplitter>(*this); }
-
- private:
-  std::shared_ptr<const std::unordered_map<std::uint64_t, Plane>> planes_;
-};
-
 std::uint32_t distinct_planes(const TreeDraft& draft, std::span<const std::uint32_t> ids) {
   std::vector<std::uint32_t> keys;
   for (auto id : ids) keys.push_back(draft.store.plane(id) >> 1);
@@ -494,7 +476,7 @@ OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSetting
   options.shape = settings.shape;
   options.min_task_fragments = std::numeric_limits<std::size_t>::max();
   if (ids.empty()) {
-    ReplaySplitter none(std::make_shared<std::unordered_map<std::uint64_t, Plane>>());
+    DecisionSplitter none(std::make_shared<const Decisions>(), nullptr);
     out.tree = build_tree(input, none, options);
     return out;
   }
@@ -505,7 +487,7 @@ OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSetting
   solver.solve(root, kInf);
 
   // Walk the tree of choices from the root, summing its value and recording each node's plane.
-  auto choices = std::make_shared<std::unordered_map<std::uint64_t, Plane>>();
+  auto choices = std::make_shared<Decisions>();
   struct Item {
     std::uint32_t state;
     std::uint64_t key;
@@ -522,7 +504,7 @@ OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSetting
     }
     const Candidate& c = solver.candidate(st.choice);
     value += c.own;
-    choices->emplace(item.key, solver.planes()[c.plane]);
+    choices->emplace(item.key, Decision{solver.planes()[c.plane], false});
     if (c.back != kNone) stack.push_back({c.back, SplitContext::child_key(item.key, false)});
     if (c.front != kNone) stack.push_back({c.front, SplitContext::child_key(item.key, true)});
   }
@@ -530,7 +512,7 @@ OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSetting
   out.lower = std::min(solver.state(root).lb, value);
   out.stats = solver.stats();
   out.stats.planes = planes;
-  ReplaySplitter replay(choices);
+  DecisionSplitter replay(choices, nullptr);
   out.tree = build_tree(input, replay, options);
   return out;
 }

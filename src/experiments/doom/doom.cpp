@@ -89,8 +89,7 @@ JobPtr doom_job(const std::string& iwad, const std::string& map, DoomBuilder::Ki
 
 ParamSet resolved_params(const DoomBuilder& b) {
   if (b.kind != DoomBuilder::Kind::Heuristic) return {};
-  const HeuristicInfo& h = find_heuristic(b.name);
-  return ParamSet::resolve(h.params, b.params, "heuristic " + h.name);
+  return HeuristicChoice::of(b.name, b.params).resolved;
 }
 
 // The label as `bspbench doom --heuristics` takes it: a preset's name, or NAME:k=v:k=v.
@@ -212,7 +211,8 @@ DoomBuilder doom_builder(DoomBuilder::Kind kind, const std::string& label) {
     case DoomBuilder::Kind::Heuristic: {
       if (auto preset = doom_preset(label)) return *preset;
       const HeuristicLabel v = split_heuristic_label(label);
-      return {DoomBuilder::Kind::Heuristic, find_heuristic(v.name).name, v.params, {}};
+      params_of(v.name);  // rejects an unknown name
+      return {DoomBuilder::Kind::Heuristic, v.name, v.params, {}};
     }
     case DoomBuilder::Kind::External: return {DoomBuilder::Kind::External, label, {}, {}};
     case DoomBuilder::Kind::Shipped: break;

@@ -405,7 +405,7 @@ Tree build_once(const SceneRun& s, const Scene& scene) {
     options.order_seed = insertion_order_seed(s.seed);
     return build_drawing(scene.polygons, nullptr, options);
   }
-  return build_drawing(scene.polygons, s.heuristic->splitter(s.seed).get(), options);
+  return s.heuristic->build(scene.polygons, options, s.seed);
 }
 
 }  // namespace

@@ -82,7 +82,7 @@ GapComparison compare_with_optimum(std::span<const Polygon> input, const GapSett
   BuildOptions options;
   options.shape = o.shape;
   for (const HeuristicChoice& h : settings.heuristics) {
-    const Tree tree = build_tree(input, *h.splitter(settings.seed), options);
+    const Tree tree = h.build(input, options, settings.seed);
     out.gaps.push_back(gap_of(h, objective_value(tree, input, o.objective, settings.solver.cell_margin), o));
   }
   return out;
