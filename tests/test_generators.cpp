@@ -214,7 +214,9 @@ TEST(GeneratorDeterminism, PinnedHashesAtFixedParameters) {
       {"doom-piece", {{"n", "30"}, {"seed", "7"}}, "602ceae18497513b"},
   };
   for (const auto& [name, params, hash] : pinned)
-    if (available(name)) EXPECT_EQ(hash_of(name, params), hash) << name;
+    if (available(name)) {
+      EXPECT_EQ(hash_of(name, params), hash) << name;
+    }
   EXPECT_EQ(pinned.size(), generators().size()) << "a generator has no pinned hash";
 }
 
@@ -239,7 +241,9 @@ TEST(GeneratorDeterminism, SameHashOnOneAndTwoThreads) {
 
 TEST(GeneratorDeterminism, DifferentSeedsGiveDifferentScenes) {
   for (const auto& g : generators())
-    if (available(g.name)) EXPECT_NE(hash_of(g.name, {{"seed", "1"}}), hash_of(g.name, {{"seed", "2"}})) << g.name;
+    if (available(g.name)) {
+      EXPECT_NE(hash_of(g.name, {{"seed", "1"}}), hash_of(g.name, {{"seed", "2"}})) << g.name;
+    }
 }
 
 // ---- catalog entries and count rules -----------------------------------------------------------
