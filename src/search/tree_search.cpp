@@ -3,6 +3,7 @@
 #include "search/tree_search.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -47,6 +48,25 @@ Cost cost_of(const Tree& t, Objective o) {
   return o == Objective::Fragments ? Cost{fragments, depth} : Cost{depth, fragments};
 }
 
+// What every build of a search spent, summed: the kept tree is billed for the whole search.
+struct SearchBill {
+  double choose_seconds = 0, machinery_seconds = 0;
+  std::uint64_t side_tests = 0, choose_side_tests = 0;
+
+  void add(const BuildStats& s) {
+    choose_seconds += s.choose_seconds;
+    machinery_seconds += s.machinery_seconds;
+    side_tests += s.side_tests;
+    choose_side_tests += s.choose_side_tests;
+  }
+  void charge(BuildStats& s) const {
+    s.choose_seconds = choose_seconds;
+    s.machinery_seconds = machinery_seconds;
+    s.side_tests = side_tests;
+    s.choose_side_tests = choose_side_tests;
+  }
+};
+
 struct Trial {
   Tree tree;
   std::shared_ptr<const Decisions> decisions;
@@ -71,8 +91,8 @@ std::optional<OpenNode> next_open(const Trial& t) {
 class Builds {
  public:
   Builds(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed,
-         RecordSettings record)
-      : input_(input), options_(options), base_(p.choice("base")), seed_(seed), record_(record),
+         RecordSettings record, SearchBill& bill)
+      : input_(input), options_(options), base_(p.choice("base")), seed_(seed), record_(record), bill_(bill),
         objective_(p.choice("objective") == "depth" ? Objective::Depth : Objective::Fragments) {}
 
   Trial build(Decisions d) const {
@@ -80,6 +100,7 @@ class Builds {
     auto recorder = std::make_shared<Recorder>(record_);
     DecisionSplitter splitter(decisions, make_splitter(base_, {}, seed_), recorder);
     Tree tree = build_tree(input_, splitter, options_);
+    bill_.add(tree.stats);
     const Cost cost = cost_of(tree, objective_);
     return {std::move(tree), std::move(decisions), recorder->nodes(), cost};
   }
@@ -107,6 +128,7 @@ class Builds {
   std::string base_;
   std::uint64_t seed_;
   RecordSettings record_;
+  SearchBill& bill_;
   Objective objective_;
 };
 
@@ -128,9 +150,10 @@ std::int64_t child_gain(const Builds& builds, const Trial& t, std::uint64_t chil
   return gain;
 }
 
-Tree lookahead(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed) {
+Tree lookahead(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed,
+               SearchBill& bill) {
   const auto depth = static_cast<std::uint32_t>(p.integer("depth"));
-  const Builds builds(input, options, p, seed, record_settings(p, depth));
+  const Builds builds(input, options, p, seed, record_settings(p, depth), bill);
   Trial best = builds.build({});
   while (const auto open = next_open(best)) {
     const auto [key, node] = *open;
@@ -153,9 +176,10 @@ Tree lookahead(std::span<const Polygon> input, const BuildOptions& options, cons
   return std::move(best.tree);
 }
 
-Tree beam(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed) {
+Tree beam(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed,
+          SearchBill& bill) {
   const auto keep = static_cast<std::size_t>(p.integer("beam"));
-  const Builds builds(input, options, p, seed, record_settings(p, 0));
+  const Builds builds(input, options, p, seed, record_settings(p, 0), bill);
   std::vector<Trial> states;
   states.push_back(builds.build({}));
   for (bool expanded = true; expanded;) {
@@ -195,7 +219,8 @@ std::string varied_value(const ParamSet& p, std::int64_t i, std::int64_t n, bool
   return text.str();
 }
 
-Tree restarts(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed) {
+Tree restarts(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed,
+              SearchBill& bill) {
   const std::string& base = p.choice("base");
   const std::string& vary = p.choice("vary");
   const HeuristicInfo& info = find_heuristic(base);
@@ -213,6 +238,7 @@ Tree restarts(std::span<const Polygon> input, const BuildOptions& options, const
     else given.push_back({vary, varied_value(p, i, n, spec->kind == ParamSpec::Kind::Integer)});
     const auto splitter = make_splitter(base, given, restart_seed);
     Tree t = build_tree(input, *splitter, options);
+    bill.add(t.stats);
     const Cost c = cost_of(t, objective);
     if (!best || c < best_cost) {
       best_cost = c;
@@ -220,6 +246,20 @@ Tree restarts(std::span<const Polygon> input, const BuildOptions& options, const
     }
   }
   return std::move(*best);
+}
+
+using SearchFn = Tree (*)(std::span<const Polygon>, const BuildOptions&, const ParamSet&, std::uint64_t, SearchBill&);
+
+// The search as registered: the tree it keeps, billed with the whole search (the time and the side
+// tests of every build it made), not with the one build that made the tree.
+template <SearchFn search>
+Tree billed(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed) {
+  const auto start = std::chrono::steady_clock::now();
+  SearchBill bill;
+  Tree tree = search(input, options, p, seed, bill);
+  tree.stats.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  bill.charge(tree.stats);
+  return tree;
 }
 
 std::vector<std::string> heuristic_names() {
@@ -272,7 +312,7 @@ const std::vector<SearchInfo>& searches() {
                    0, 0, 0, variable_names()},
                   {"from", ParamSpec::Kind::Real, "the varied parameter's first value", 0, -1e12, 1e12, {}},
                   {"to", ParamSpec::Kind::Real, "its last (geometric spacing when both are positive)", 1, -1e12, 1e12, {}}}),
-       restarts},
+       billed<restarts>},
       {"lookahead",
        "each top-level node takes the option whose completed tree is best, scored with the best option at its "
        "children (depth 1)",
@@ -280,11 +320,11 @@ const std::vector<SearchInfo>& searches() {
               std::vector<ParamSpec>{{"depth", ParamSpec::Kind::Integer,
                                       "levels of options tried below each option before the base completes it", 1, 0,
                                       1, {}}}),
-       lookahead},
+       billed<lookahead>},
       {"beam", "beam search over partial trees: the best `beam` sets of top-level decisions, completed by the base",
        joined(common_params(), level_params(4),
               std::vector<ParamSpec>{{"beam", ParamSpec::Kind::Integer, "partial trees kept after each step", 4, 1, 256, {}}}),
-       beam},
+       billed<beam>},
   };
   return all;
 }
