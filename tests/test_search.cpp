@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <omp.h>
 
@@ -11,6 +12,7 @@
 #include "experiments/heuristic_choice.h"
 #include "search/tree_search.h"
 #include "split/registry.h"
+#include "suite/suite_file.h"
 #include "tree/build.h"
 #include "validate/tree_invariants.h"
 
@@ -176,4 +178,18 @@ TEST(Searches, NamesAndParametersAreCheckedAtTheEdge) {
   } catch (const UsageError& e) {
     for (const auto& s : searches()) EXPECT_NE(std::string(e.what()).find(s.name), std::string::npos) << e.what();
   }
+}
+
+// Every suite the project ships reads and expands (the searches named in quick and optimal among
+// them): a name a block cannot resolve fails here, not in CI's sweep.
+TEST(Searches, EveryShippedSuiteFileReadsAndExpands) {
+  std::size_t suites = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(BSPBENCH_SOURCE_DIR) + "/analysis/suites")) {
+    if (entry.path().extension() != ".json") continue;
+    ++suites;
+    const suite::Suite s = suite::load_suite_file(entry.path().string());
+    for (const suite::SuiteBlock& b : s.blocks)
+      if (b.kind->expand_when_parsed) EXPECT_FALSE(b.block->expand().empty()) << entry.path();
+  }
+  EXPECT_GE(suites, 10u);
 }

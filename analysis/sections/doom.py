@@ -124,7 +124,7 @@ def margin(measured, reference, unit=""):
 
 
 def target_rows(totals):
-    """The two presets' targets, each condition measured: (builder, condition, measured, reference, met, by)."""
+    """The presets' targets, each condition measured: (builder, condition, measured, reference, met, by)."""
     zdbsp = next((t for t in totals if t["name"] == "zdbsp"), None)
     shipped = next((t for t in totals if t["name"] == "shipped"), None)
     rows = []

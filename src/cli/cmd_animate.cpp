@@ -15,7 +15,7 @@
 #include "cli/run_args.h"
 #include "common/errors.h"
 #include "dynamic/updater.h"
-#include "split/registry.h"
+#include "experiments/heuristic_choice.h"
 #include "experiments/animate/animation_run.h"
 
 namespace bsp::cli {
@@ -67,14 +67,14 @@ int run(Args& args) {
   args.finish();
 
   const Animation animation = input ? Animation(spec, scene_or_file(spec.scene, {}, "--input")) : Animation(spec);
-  auto updater = make_updater(strategy, make_splitter(heuristic, params, seed),
-                              make_splitter(object_heuristic, object_params, seed), build);
+  auto updater = make_updater(strategy, experiments::per_node_splitter(heuristic, params, seed),
+                              experiments::per_node_splitter(object_heuristic, object_params, seed), build);
   experiments::AnimationRunSettings settings;
   settings.views = views;
   settings.check_every = every;
   settings.drift_every = drift_every;
   const experiments::AnimationRun run = experiments::run_animation(
-      animation, *updater, [&] { return make_splitter(heuristic, params, seed); }, build, settings);
+      animation, *updater, [&] { return experiments::per_node_splitter(heuristic, params, seed); }, build, settings);
   nlohmann::json out = {{"animation", animation.describe()},
                         {"strategy", strategy},
                         {"heuristic", heuristic},

@@ -8,6 +8,7 @@
 #include "solid/boundary.h"
 #include "cli/commands.h"
 #include "mesh_scenes.h"
+#include "experiments/heuristic_choice.h"
 #include "search/tree_search.h"
 #include "split/registry.h"
 
@@ -45,9 +46,11 @@ int run_heuristics(Args& args) {
   for (const auto& h : heuristics())
     list.push_back({{"name", h.name}, {"summary", h.summary}, {"autopartition", h.autopartition},
                     {"params", specs_to_json(h.params)}});
-  // Searching builders take the same names and parameters wherever a tree is built from a name.
+  // Searching builders take the same names and parameters wherever a tree is built from a name; one
+  // is an autopartition when its base is (listed for its default base).
   for (const auto& s : searches())
-    list.push_back({{"name", s.name}, {"summary", "search: " + s.summary}, {"autopartition", true},
+    list.push_back({{"name", s.name}, {"summary", "search: " + s.summary},
+                    {"autopartition", experiments::HeuristicChoice::of(s.name, {}).autopartition()},
                     {"params", specs_to_json(s.params)}});
   print(list, json);
   return 0;

@@ -15,7 +15,7 @@
 #include "solid/boundary.h"
 #include "solid/exact_solid_tree.h"
 #include "solid/solid_build.h"
-#include "split/registry.h"
+#include "experiments/heuristic_choice.h"
 #include "validate/exact_solid_check.h"
 
 namespace bsp::cli {
@@ -57,7 +57,7 @@ int run(Args& args) {
   const std::vector<Vec3> points = read_points(points_path);
   const Box box = solid_box(bounds(scene), bounds(scene));
   require_closed_solid(scene.polygons, Tolerance::for_extent(box.diagonal()).plane_eps, scene.name);
-  auto splitter = make_splitter(heuristic, hparams, 1);
+  auto splitter = experiments::per_node_splitter(heuristic, hparams, 1);
   std::vector<PointClass> answers;
   answers.reserve(points.size());
   if (*kernel == Kernel::Exact) {

@@ -13,7 +13,7 @@
 #include "common/errors.h"
 #include "experiments/kernel/kernel.h"
 #include "geometry/segment2.h"
-#include "split/registry.h"
+#include "experiments/heuristic_choice.h"
 
 namespace bsp::cli {
 
@@ -46,8 +46,8 @@ int run(Args& args) {
   settings.seed = seed;
   args.finish();
   if (all_segments(scene.polygons)) throw UsageError("kernel compares 3D scenes; this one is 2D segments");
-  const auto float_splitter = make_splitter(t.heuristic, t.params, t.seed);
-  const auto exact_splitter = make_splitter(t.heuristic, t.params, t.seed);
+  const auto float_splitter = experiments::per_node_splitter(t.heuristic, t.params, t.seed);
+  const auto exact_splitter = experiments::per_node_splitter(t.heuristic, t.params, t.seed);
   const experiments::KernelComparison c =
       experiments::compare_kernels(scene.polygons, *float_splitter, *exact_splitter, settings);
   nlohmann::json out = describe_run(scene, t);

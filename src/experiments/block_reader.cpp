@@ -8,7 +8,6 @@
 #include "catalog.h"
 #include "experiments/heuristic_choice.h"
 #include "mesh_scenes.h"
-#include "split/registry.h"
 #include "tree/exact_build.h"
 
 namespace bsp::experiments {
@@ -200,22 +199,21 @@ std::string BlockReader::heuristic(const json& j, const std::string& path, std::
   if (j.is_object()) {
     check_keys(j, path, {"name", "params"});
     const std::string name = string(required(j, path, "name"), child(path, "name"));
-    const HeuristicInfo& h = at(child(path, "name"), [&]() -> const HeuristicInfo& { return find_heuristic(name); });
+    const std::vector<ParamSpec>& specs = at(child(path, "name"), [&]() -> const std::vector<ParamSpec>& { return params_of(name); });
     ParamAssignments given;
-    if (const json* p = optional(j, "params")) given = params(*p, child(path, "params"), h.params, "heuristic " + h.name, false);
-    std::string label = h.name;
-    for (std::size_t i = 0; i < given.size(); ++i) label += (i == 0 ? ":" : ",") + given[i].first + "=" + given[i].second;
-    identity = h.name + " " + ParamSet::resolve(h.params, given, h.name).canonical();
-    return label;
+    if (const json* p = optional(j, "params")) given = params(*p, child(path, "params"), specs, "heuristic " + name, false);
+    const HeuristicChoice choice = at(path, [&] { return HeuristicChoice::of(name, given); });
+    identity = name + " " + choice.resolved.canonical();
+    return choice.label;
   }
   const std::string label = string(j, path);
   const HeuristicLabel v = at(path, [&] { return split_heuristic_label(label); });
-  const HeuristicInfo& h = at(path, [&]() -> const HeuristicInfo& { return find_heuristic(v.name); });
+  at(path, [&] { return params_of(v.name); });
   if (label.find(':') != std::string::npos && v.params.empty()) fail(path, "no parameters after ':' in '" + label + "'");
   std::set<std::string> keys;
   for (const auto& [k, value] : v.params)
     if (!keys.insert(k).second) fail(path, "parameter '" + k + "' given twice in '" + label + "'");
-  identity = h.name + " " + at(path, [&] { return ParamSet::resolve(h.params, v.params, "heuristic " + h.name); }).canonical();
+  identity = v.name + " " + at(path, [&] { return HeuristicChoice::of(v.name, v.params); }).resolved.canonical();
   return label;
 }
 

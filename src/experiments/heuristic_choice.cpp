@@ -46,6 +46,7 @@ const std::vector<ParamSpec>& params_of(const std::string& name) {
 HeuristicChoice HeuristicChoice::of(const std::string& name, ParamAssignments params) {
   const bool search = find_search(name) != nullptr;
   ParamSet resolved = ParamSet::resolve(params_of(name), params, (search ? "search " : "heuristic ") + name);
+  if (search) find_search(name)->check(resolved);
   std::string label = name;
   for (std::size_t i = 0; i < params.size(); ++i) label += (i == 0 ? ":" : ",") + params[i].first + "=" + params[i].second;
   return {std::move(label), name, search, std::move(params), std::move(resolved)};
@@ -59,16 +60,35 @@ std::vector<HeuristicChoice> choices_or_all(const std::vector<std::string>& labe
   return out;
 }
 
+std::vector<HeuristicChoice> per_node_choices_or_all(const std::vector<std::string>& labels, const std::string& what) {
+  std::vector<HeuristicChoice> out = choices_or_all(labels);
+  for (const HeuristicChoice& h : out) h.require_per_node(what);
+  return out;
+}
+
+std::unique_ptr<Splitter> per_node_splitter(const std::string& name, const ParamAssignments& params, std::uint64_t seed) {
+  return HeuristicChoice::of(name, params).splitter(seed);
+}
+
 std::string HeuristicChoice::arguments() const {
   std::string out = " --heuristic " + name;
   for (const auto& [k, value] : params) out += " --param " + k + "=" + value;
   return out;
 }
 
-std::unique_ptr<Splitter> HeuristicChoice::splitter(std::uint64_t seed) const {
+void HeuristicChoice::require_per_node(const std::string& what) const {
   if (search)
-    throw UsageError(name + " is a searching builder: it builds whole trees, and this builds per node with a heuristic");
+    throw UsageError(name + " is a searching builder, which builds whole trees; " + what +
+                     " builds per node and needs a heuristic (bspbench heuristics lists both)");
+}
+
+std::unique_ptr<Splitter> HeuristicChoice::splitter(std::uint64_t seed) const {
+  require_per_node("this command or experiment");
   return find_heuristic(name).make(resolved, seed);
+}
+
+bool HeuristicChoice::autopartition() const {
+  return find_heuristic(search ? resolved.choice("base") : name).autopartition;
 }
 
 Tree HeuristicChoice::build(std::span<const Polygon> input, const BuildOptions& options, std::uint64_t seed) const {

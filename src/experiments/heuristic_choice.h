@@ -42,7 +42,12 @@ struct HeuristicChoice {
   std::string arguments() const;
   // Throws UsageError for a search: it has no per-node splitter.
   std::unique_ptr<Splitter> splitter(std::uint64_t seed) const;
-  // The tree it builds from `input` (recursively; a search builds several and keeps one).
+  // Throws UsageError for a search, naming `what` needs a heuristic; for checks where a job or a
+  // command is read, before anything runs.
+  void require_per_node(const std::string& what) const;
+  // Whether every plane it picks is a fragment's (a search: its base's).
+  bool autopartition() const;
+  // The tree it builds from `input` with build_tree (a search builds several and keeps one).
   Tree build(std::span<const Polygon> input, const BuildOptions& options, std::uint64_t seed) const;
 };
 
@@ -53,5 +58,10 @@ const std::vector<ParamSpec>& params_of(const std::string& name);
 // added to the registry is swept without further wiring; searches, which cost many builds, only
 // when named). Throws as parse does.
 std::vector<HeuristicChoice> choices_or_all(const std::vector<std::string>& labels);
+// choices_or_all for the kinds that build per node (`what`, e.g. "a merge block"): a search named
+// there throws UsageError when the block is read.
+std::vector<HeuristicChoice> per_node_choices_or_all(const std::vector<std::string>& labels, const std::string& what);
+// make_splitter for a name a command was given: a search's name gets the searching builder's message.
+std::unique_ptr<Splitter> per_node_splitter(const std::string& name, const ParamAssignments& params, std::uint64_t seed);
 
 }  // namespace bsp::experiments

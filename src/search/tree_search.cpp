@@ -76,12 +76,13 @@ struct Trial {
 
 using OpenNode = std::pair<std::uint64_t, const RecordedNode*>;
 
-// The shallowest node the trial left to the base that has an alternative, ties by key; none when
-// every recorded node is decided.
-std::optional<OpenNode> next_open(const Trial& t) {
+// The shallowest node of depth `levels` or less that the trial left to the base and that has an
+// alternative, ties by key; none when every such node is decided. (The record can go deeper: the
+// lookahead's children.)
+std::optional<OpenNode> next_open(const Trial& t, std::uint32_t levels) {
   std::optional<OpenNode> best;
   for (const auto& [key, node] : t.recorded) {
-    if (node.options.size() < 2 || t.decisions->contains(key)) continue;
+    if (node.depth > levels || node.options.size() < 2 || t.decisions->contains(key)) continue;
     if (!best || node.depth < best->second->depth) best = OpenNode{key, &node};
   }
   return best;
@@ -95,7 +96,7 @@ class Builds {
       : input_(input), options_(options), base_(p.choice("base")), seed_(seed), record_(record), bill_(bill),
         objective_(p.choice("objective") == "depth" ? Objective::Depth : Objective::Fragments) {}
 
-  Trial build(Decisions d) const {
+  Trial build(Decisions d) {
     auto decisions = std::make_shared<const Decisions>(std::move(d));
     auto recorder = std::make_shared<Recorder>(record_);
     DecisionSplitter splitter(decisions, make_splitter(base_, {}, seed_), recorder);
@@ -106,7 +107,7 @@ class Builds {
   }
 
   // The trial `from` with `key` decided as its option `option` > 0: a new build.
-  Trial extend(const Trial& from, std::uint64_t key, std::size_t option) const {
+  Trial extend(const Trial& from, std::uint64_t key, std::size_t option) {
     Decisions d = *from.decisions;
     d[key] = from.recorded.at(key).options[option];
     return build(std::move(d));
@@ -119,8 +120,6 @@ class Builds {
     from.decisions = std::make_shared<const Decisions>(std::move(d));
     return std::move(from);
   }
-
-  Objective objective() const { return objective_; }
 
  private:
   std::span<const Polygon> input_;
@@ -138,7 +137,7 @@ RecordSettings record_settings(const ParamSet& p, std::uint32_t extra_depth) {
 }
 
 // The best a child of X can do with one other option than its base's: how much its cost drops.
-std::int64_t child_gain(const Builds& builds, const Trial& t, std::uint64_t child) {
+std::int64_t child_gain(Builds& builds, const Trial& t, std::uint64_t child) {
   const auto it = t.recorded.find(child);
   if (it == t.recorded.end()) return 0;
   std::int64_t gain = 0;
@@ -153,9 +152,10 @@ std::int64_t child_gain(const Builds& builds, const Trial& t, std::uint64_t chil
 Tree lookahead(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed,
                SearchBill& bill) {
   const auto depth = static_cast<std::uint32_t>(p.integer("depth"));
-  const Builds builds(input, options, p, seed, record_settings(p, depth), bill);
+  Builds builds(input, options, p, seed, record_settings(p, depth), bill);
+  const auto levels = static_cast<std::uint32_t>(p.integer("levels"));
   Trial best = builds.build({});
-  while (const auto open = next_open(best)) {
+  while (const auto open = next_open(best, levels)) {
     const auto [key, node] = *open;
     std::optional<Trial> chosen;
     std::pair<std::int64_t, Cost> chosen_score;
@@ -179,14 +179,15 @@ Tree lookahead(std::span<const Polygon> input, const BuildOptions& options, cons
 Tree beam(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed,
           SearchBill& bill) {
   const auto keep = static_cast<std::size_t>(p.integer("beam"));
-  const Builds builds(input, options, p, seed, record_settings(p, 0), bill);
+  Builds builds(input, options, p, seed, record_settings(p, 0), bill);
+  const auto levels = static_cast<std::uint32_t>(p.integer("levels"));
   std::vector<Trial> states;
   states.push_back(builds.build({}));
   for (bool expanded = true; expanded;) {
     expanded = false;
     std::vector<Trial> next;
     for (Trial& s : states) {
-      const auto open = next_open(s);
+      const auto open = next_open(s, levels);
       if (!open) {
         next.push_back(std::move(s));
         continue;
@@ -219,14 +220,22 @@ std::string varied_value(const ParamSet& p, std::int64_t i, std::int64_t n, bool
   return text.str();
 }
 
+// The base's parameter restarts varies; null for the seed. Throws UsageError when the base has no
+// such parameter.
+const ParamSpec* varied_spec(const ParamSet& p) {
+  const std::string& vary = p.choice("vary");
+  if (vary == "seed") return nullptr;
+  const HeuristicInfo& info = find_heuristic(p.choice("base"));
+  for (const ParamSpec& s : info.params)
+    if (s.name == vary) return &s;
+  throw UsageError("restarts: heuristic " + info.name + " has no parameter " + vary + " to vary");
+}
+
 Tree restarts(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed,
               SearchBill& bill) {
   const std::string& base = p.choice("base");
   const std::string& vary = p.choice("vary");
-  const HeuristicInfo& info = find_heuristic(base);
-  const auto spec = std::find_if(info.params.begin(), info.params.end(), [&](const ParamSpec& s) { return s.name == vary; });
-  if (vary != "seed" && spec == info.params.end())
-    throw UsageError("restarts: heuristic " + base + " has no parameter " + vary + " to vary");
+  const ParamSpec* spec = varied_spec(p);
   const Objective objective = p.choice("objective") == "depth" ? Objective::Depth : Objective::Fragments;
   const std::int64_t n = p.integer("n");
   std::optional<Tree> best;
@@ -262,6 +271,8 @@ Tree billed(std::span<const Polygon> input, const BuildOptions& options, const P
   return tree;
 }
 
+// The bases a search can take, `weighted` first: a choice's first is its default, and weighted's
+// sampled candidates keep the many builds of a search near n log n each.
 std::vector<std::string> heuristic_names() {
   std::vector<std::string> names{"weighted"};
   for (const auto& h : heuristics())
@@ -312,7 +323,7 @@ const std::vector<SearchInfo>& searches() {
                    0, 0, 0, variable_names()},
                   {"from", ParamSpec::Kind::Real, "the varied parameter's first value", 0, -1e12, 1e12, {}},
                   {"to", ParamSpec::Kind::Real, "its last (geometric spacing when both are positive)", 1, -1e12, 1e12, {}}}),
-       billed<restarts>},
+       billed<restarts>, [](const ParamSet& p) { varied_spec(p); }},
       {"lookahead",
        "each top-level node takes the option whose completed tree is best, scored with the best option at its "
        "children (depth 1)",
@@ -320,11 +331,11 @@ const std::vector<SearchInfo>& searches() {
               std::vector<ParamSpec>{{"depth", ParamSpec::Kind::Integer,
                                       "levels of options tried below each option before the base completes it", 1, 0,
                                       1, {}}}),
-       billed<lookahead>},
+       billed<lookahead>, [](const ParamSet&) {}},
       {"beam", "beam search over partial trees: the best `beam` sets of top-level decisions, completed by the base",
        joined(common_params(), level_params(4),
               std::vector<ParamSpec>{{"beam", ParamSpec::Kind::Integer, "partial trees kept after each step", 4, 1, 256, {}}}),
-       billed<beam>},
+       billed<beam>, [](const ParamSet&) {}},
   };
   return all;
 }

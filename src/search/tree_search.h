@@ -15,10 +15,10 @@
 //   lookahead  top-down over the top levels: each candidate of a node is scored by the tree the
 //              base completes below it, improved by the best alternative at each of its children
 //              when depth = 1 (the pilot method [DuinVoss1999] with a one-level lookahead);
-//              about width·(1 + 2·depth·(width − 1)) builds per decided node.
+//              (width − 1)·(1 + 2·width) builds per decided node, width − 1 with depth = 0.
 //   beam       beam search over partial trees [Lowerre1976]: the `beam` best sets of decisions,
-//              each extended at its next undecided node by every candidate there; about
-//              beam·(width − 1) builds per decided level node.
+//              each extended at its next undecided node by every option there; at most
+//              beam·(width − 1) builds per step, a step per decided node of the best state.
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -38,6 +38,9 @@ struct SearchInfo {
   std::string summary;  // one line, as a heuristic's
   std::vector<ParamSpec> params;
   std::function<Tree(std::span<const Polygon>, const BuildOptions&, const ParamSet&, std::uint64_t seed)> build;
+  // Throws UsageError for parameters that resolve but do not fit together (restarts varying a
+  // parameter its base lacks), so a suite or a command fails when it is read, not mid-run.
+  std::function<void(const ParamSet&)> check;
 };
 
 const std::vector<SearchInfo>& searches();

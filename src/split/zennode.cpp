@@ -6,8 +6,9 @@
 //
 // in integer arithmetic as the source computes it, and the largest metric wins. Unlike a
 // fewest-splits rule it trades a split for balance: with the source's constants a split costs
-// halving L·R and 26 more, so a node of 100 fragments prefers one split that halves it (1,224) to
-// no split that peels one fragment off (99); balanced children then need fewer splits below.
+// halving L·R and 26 more, so a node of 100 fragments prefers one split that halves the rest
+// (49·50/2 − 26 = 1,199) to no split that peels one fragment off (99); balanced children then need
+// fewer splits below. The arithmetic is 128-bit, so no count or constant in range overflows.
 // Ties go to the smaller |L − R|, then to the earlier fragment. A candidate with nothing behind it
 // and nothing split (L·R + S = 0, the source's "boundary line") is not taken while any other
 // candidate divides the node. Coplanar fragments count in front, where the candidate's own
@@ -25,7 +26,7 @@ namespace bsp {
 namespace {
 
 struct ZenNodeSettings {
-  std::int64_t x1, x2, x3, x4;  // the source's ZEN_X1..ZEN_X4
+  __int128 x1, x2, x3, x4;  // the source's ZEN_X1..ZEN_X4
   std::uint64_t candidates;
   std::uint64_t sample;
 
@@ -34,9 +35,9 @@ struct ZenNodeSettings {
             static_cast<std::uint64_t>(p.integer("candidates")), static_cast<std::uint64_t>(p.integer("sample"))};
   }
 
-  std::int64_t metric(const SideCounts& c) const {
-    const std::int64_t left = c.back, right = c.front + c.coplanar, split = c.spanning;
-    std::int64_t m = left * right;
+  __int128 metric(const SideCounts& c) const {
+    const __int128 left = c.back, right = c.front + c.coplanar, split = c.spanning;
+    __int128 m = left * right;
     if (split == 0) return m;
     if (x2 < x1 * split) m = x2 * m / (x1 * split);
     return m - (x3 * split + x4) * split;
@@ -55,7 +56,7 @@ class ZenNodeSplitter final : public Splitter {
     const SideCounter count(ctx, s_.sample, rng, scratch_);
     return SplitChoice::of_fragment(argmin_candidate(count, candidates, [this](std::uint32_t, const SideCounts& c) {
       const bool boundary = c.back == 0 && c.spanning == 0;
-      const std::int64_t imbalance = static_cast<std::int64_t>(c.front + c.coplanar) - c.back;
+      const std::int64_t imbalance = static_cast<std::int64_t>(c.front) + c.coplanar - c.back;
       // argmin: a boundary line last, then the largest metric, then the best balance.
       return std::tuple{boundary, -s_.metric(c), imbalance < 0 ? -imbalance : imbalance};
     }));

@@ -123,7 +123,7 @@ Jobs AnimateBlock::expand() const {
   for (const auto& name : scenes) {
     const GeneratorInfo& g = find_generator(name);
     for (auto n : sizes_in_range(g, sizes))
-      for (const auto& h : choices_or_all(heuristics)) {
+      for (const auto& h : per_node_choices_or_all(heuristics, "an animation block")) {
         for (const auto& strategy : all_strategies)
           for (auto count : moving)
             for (auto speed : speeds)

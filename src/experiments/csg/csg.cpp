@@ -145,7 +145,7 @@ std::unique_ptr<const Block> parse_block(const BlockReader& r, const json& j, co
 
 Jobs CsgBlock::expand() const {
   Jobs out;
-  const std::vector<HeuristicChoice> choices = choices_or_all(heuristics.empty() ? std::vector<std::string>{kDefaultHeuristic} : heuristics);
+  const std::vector<HeuristicChoice> choices = per_node_choices_or_all(heuristics.empty() ? std::vector<std::string>{kDefaultHeuristic} : heuristics, "a csg block");
   for (const ProgramSource& program : programs)
     for (const std::string& engine : engines)
       for (const std::uint64_t seed : seeds) {

@@ -215,7 +215,7 @@ Jobs KernelBlock::expand() const {
   for (const auto& name : meshes) {
     const std::string path = mesh_scene_path(name);
     const SceneFile file{path, file_hash(path)};
-    for (const auto& h : choices_or_all(heuristics))
+    for (const auto& h : per_node_choices_or_all(heuristics, "a kernel block"))
       for (auto seed : seeds)
         for (double eps : plane_eps)
           for (double noise : perturbations)
@@ -225,7 +225,7 @@ Jobs KernelBlock::expand() const {
   for (const auto& name : scenes) {
     const GeneratorInfo& g = find_generator(name);
     for (auto n : sizes_in_range(g, sizes))
-      for (const auto& h : choices_or_all(heuristics))
+      for (const auto& h : per_node_choices_or_all(heuristics, "a kernel block"))
         for (auto seed : seeds)
           for (double eps : plane_eps)
             for (double noise : perturbations)

@@ -215,7 +215,7 @@ Jobs MergeBlock::expand() const {
   for (const auto& name : names) {
     const SolidPairInfo& pair = find_solid_pair(name);
     for (auto n : pair_sizes(pair, *this))
-      for (const auto& h : choices_or_all(heuristics))
+      for (const auto& h : per_node_choices_or_all(heuristics, "a merge block"))
         for (auto op : all_ops)
           for (auto kernel : kernels)
             for (auto seed : seeds)

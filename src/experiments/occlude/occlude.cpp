@@ -115,7 +115,7 @@ nlohmann::json OccludeJob::identity() const {
 nlohmann::json OccludeJob::run(const RunContext& context) const {
   const double start = wall_seconds();
   const Scene scene = scene_.make_scene();
-  const Tree tree = build_tree(scene.polygons, *scene_.heuristic->splitter(scene_.seed));
+  const Tree tree = scene_.heuristic->build(scene.polygons, {}, scene_.seed);
   const InvariantReport invariants = check_tree_invariants(tree, scene.polygons);
   const double setup_start = thread_cpu_seconds();
   const Occluder occluder(tree);

@@ -33,7 +33,7 @@ double ratio(double value, double bound) { return bound > 0 ? value / bound : 0.
 HeuristicGap gap_of(const HeuristicChoice& h, double value, const OptimalResult& o) {
   HeuristicGap g;
   g.label = h.label;
-  g.autopartition = find_heuristic(h.name).autopartition;
+  g.autopartition = h.autopartition();
   g.value = value;
   g.gap_lower = ratio(value, o.upper);
   g.gap_upper = ratio(value, o.lower);
@@ -269,7 +269,7 @@ json OptimalJob::run(const RunContext& context) const {
   BuildOptions options;
   options.shape = scene_.shape;
   const double build_start = thread_cpu_seconds();
-  const Tree tree = build_tree(scene.polygons, *scene_.heuristic->splitter(scene_.seed), options);
+  const Tree tree = scene_.heuristic->build(scene.polygons, options, scene_.seed);
   const double build_seconds = thread_cpu_seconds() - build_start;
   const HeuristicGap g = gap_of(*scene_.heuristic, objective_value(tree, scene.polygons, objective_, settings.cell_margin), o);
   json metrics{{"value", g.value},
