@@ -21,6 +21,7 @@
 #include "search/tree_search.h"
 #include "split/registry.h"
 #include "tree/build.h"
+#include "tree/depth.h"
 #include "validate/tree_invariants.h"
 
 using namespace bsp;
@@ -31,17 +32,6 @@ Tree build(const std::vector<Polygon>& polys, std::string_view heuristic, const 
            Shape shape = Shape::Strict, std::uint64_t seed = 1) {
   auto splitter = make_splitter(heuristic, params, seed);
   return build_tree(polys, *splitter, {.shape = shape});
-}
-
-std::uint32_t max_depth(const Tree& tree) {
-  std::vector<std::uint32_t> depth(tree.nodes.size(), 1);
-  std::uint32_t deepest = 0;
-  for (std::size_t i = 0; i < tree.nodes.size(); ++i) {  // pre-order: parents come before children
-    deepest = std::max(deepest, depth[i]);
-    for (auto c : {tree.nodes[i].front, tree.nodes[i].back})
-      if (c != kNull) depth[c] = depth[i] + 1;
-  }
-  return deepest;
 }
 
 std::uint32_t ceil_log2(std::uint64_t x) {

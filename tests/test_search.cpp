@@ -189,7 +189,9 @@ TEST(Searches, EveryShippedSuiteFileReadsAndExpands) {
     ++suites;
     const suite::Suite s = suite::load_suite_file(entry.path().string());
     for (const suite::SuiteBlock& b : s.blocks)
-      if (b.kind->expand_when_parsed) EXPECT_FALSE(b.block->expand().empty()) << entry.path();
+      if (b.kind->expand_when_parsed) {
+        EXPECT_FALSE(b.block->expand().empty()) << entry.path();
+      }
   }
   EXPECT_GE(suites, 10u);
 }

@@ -15,6 +15,7 @@
 #include "search/decisions.h"
 #include "split/registry.h"
 #include "tree/build.h"
+#include "tree/depth.h"
 
 namespace bsp {
 
@@ -27,20 +28,6 @@ struct Cost {
   std::int64_t first = 0, second = 0;
   auto operator<=>(const Cost&) const = default;
 };
-
-std::int64_t max_depth(const Tree& t) {
-  std::int64_t deepest = 0;
-  std::vector<std::pair<std::uint32_t, std::int64_t>> stack;
-  if (!t.empty()) stack.push_back({0, 1});
-  while (!stack.empty()) {
-    const auto [node, depth] = stack.back();
-    stack.pop_back();
-    deepest = std::max(deepest, depth);
-    for (const std::uint32_t child : {t.nodes[node].front, t.nodes[node].back})
-      if (child != kNull) stack.push_back({child, depth + 1});
-  }
-  return deepest;
-}
 
 Cost cost_of(const Tree& t, Objective o) {
   const auto fragments = static_cast<std::int64_t>(t.fragments.size());

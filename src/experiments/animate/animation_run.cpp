@@ -7,6 +7,7 @@
 #include "metrics/statistics.h"
 #include "metrics/traversal_cost.h"
 #include "tree/build.h"
+#include "tree/depth.h"
 #include "validate/order_check.h"
 #include "validate/tree_invariants.h"
 
@@ -32,25 +33,10 @@ struct FrameRecord {
   std::optional<FreshBuild> fresh;
 };
 
-// The root has depth 1. Explicit stack: a frame's tree may be a chain.
-std::uint64_t depth_of(const Tree& tree) {
-  std::uint64_t depth = 0;
-  std::vector<std::pair<std::uint32_t, std::uint64_t>> stack;
-  if (!tree.nodes.empty()) stack.push_back({0, 1});
-  while (!stack.empty()) {
-    const auto [r, d] = stack.back();
-    stack.pop_back();
-    depth = std::max(depth, d);
-    for (const std::uint32_t c : {tree.nodes[r].front, tree.nodes[r].back})
-      if (c != kNull) stack.push_back({c, d + 1});
-  }
-  return depth;
-}
-
 FrameRecord check_frame(const Updater& u, const UpdateWork& work, std::span<const Polygon> input, bool check,
                         const ValidationSettings& settings, std::span<const Frustum> views) {
   const Tree& tree = u.tree();
-  FrameRecord f{work, tree.fragments.size(), tree.nodes.size(), depth_of(tree), 0, 0, traversal_cost(tree, views), check, {}};
+  FrameRecord f{work, tree.fragments.size(), tree.nodes.size(), max_depth(tree), 0, 0, traversal_cost(tree, views), check, {}};
   if (!check) return f;
   f.invariant_violations = check_tree_invariants(tree, input).violations;
   if (settings.views > 0) f.order_violations = validate_tree(tree, settings).violations;
@@ -180,7 +166,7 @@ AnimationRun run_animation(const Animation& animation, Updater& updater,
     if (settings.drift_every > 0 && (f % settings.drift_every == 0 || last)) {
       const std::unique_ptr<Splitter> splitter = fresh_splitter();
       const Tree fresh = build_tree(input.polygons, *splitter, build);
-      frames.back().fresh = FreshBuild{fresh.fragments.size(), fresh.nodes.size(), depth_of(fresh),
+      frames.back().fresh = FreshBuild{fresh.fragments.size(), fresh.nodes.size(), max_depth(fresh),
                                        traversal_cost(fresh, cost_views)};
     }
   }

@@ -186,6 +186,8 @@ class DrawBlockReader {
       return "the exact kernel builds strict and coarse trees, not leafy ones (leave \"exact\" or \"leafy\" out)";
     for (const auto* g : named)
       if (g->segments) return "the exact kernel builds 3D scenes; " + g->name + " is 2D segments";
+    for (const auto& h : choices_or_all(b.heuristics))
+      if (h.search) return "the exact kernel builds per node with a heuristic; " + h.name + " is a searching builder";
     return {};
   }
 
