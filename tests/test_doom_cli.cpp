@@ -2,6 +2,7 @@
 // writes read back whole, and bad WADs refused with one line naming the lump, exit 2, no output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -52,6 +53,10 @@ TEST_F(DoomCli, PresetsBuildProvedNodesAndWriteReadablePwads) {
     EXPECT_GE(run["splits"].get<std::int64_t>(), 0);
   }
   EXPECT_EQ(ours, 4u);
+  // Progress goes to stderr, not into the JSON: off a terminal, one final plain line (the runs
+  // take well under the 10 s between plain lines) counting every run, the shipped nodes' included.
+  EXPECT_EQ(r.err.rfind("doom: 6/6 runs, ", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   for (const char* label : {"doom-splits", "crystal{candidates=8}"})
     for (const char* map : {"MAP01", "MAP02"}) {
       const auto file = dir_ / "out" / label / (std::string(map) + ".wad");

@@ -51,7 +51,7 @@
 #include "suite/expand.h"
 #include "suite/suite_file.h"
 #include "sweep/journal.h"
-#include "sweep/progress.h"
+#include "common/progress.h"
 #include "sweep/runner.h"
 
 using namespace bsp;
@@ -969,7 +969,7 @@ TEST(SweepJournal, DamagedLineBeforeTheLastIsAnInputError) {
 
 TEST(SweepProgress, TerminalRewritesOneLineAndPlainOutputPrintsWholeLines) {
   std::ostringstream tty, plain;
-  Progress on_tty(tty, true, 4, 4.0), on_log(plain, false, 4, 4.0);
+  Progress on_tty(tty, true, "sweep", "jobs", 4, 4.0), on_log(plain, false, "sweep", "jobs", 4, 4.0);
   for (int i = 0; i < 4; ++i) {
     on_tty.job_done(1.0);
     on_log.job_done(1.0);  // well within kPlainInterval: no line yet
@@ -983,6 +983,7 @@ TEST(SweepProgress, TerminalRewritesOneLineAndPlainOutputPrintsWholeLines) {
   EXPECT_EQ(p.find('\r'), std::string::npos);
   EXPECT_EQ(std::count(p.begin(), p.end(), '\n'), 1);
   EXPECT_NE(p.find("4/4 jobs"), std::string::npos);
+  EXPECT_EQ(p.rfind("sweep: ", 0), 0u);
 }
 
 TEST(SweepRunner, InterruptedSweepResumesWithoutRerunningFinishedJobs) {

@@ -1,17 +1,20 @@
 // bspbench doom: our heuristics and the installed node builders on the maps of a Doom WAD, side by
 // side (experiments/doom/map_nodes.h): splits, segs, subsectors, nodes, depth and CPU time per map and in
-// total, every output proved structurally and ours also against Embree. Exit code 1 when any of
-// our outputs fails a check.
+// total, every output proved structurally and ours also against Embree; progress with the time left
+// on stderr. Exit code 1 when any of our outputs fails a check.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "common/errors.h"
+#include "common/progress.h"
 #include "io/wad.h"
 #include "experiments/heuristic_choice.h"
 #include "split/registry.h"
@@ -107,9 +110,17 @@ int run(Args& args) {
   // Every map is read (and refused if malformed) before anything is built or written.
   std::vector<DoomMap> read;
   for (const auto& name : maps) read.push_back(read_map(wad, name, iwad));
+  // Progress on stderr: a map's runs weigh as its linedefs, which is what building it costs.
+  double weight = 0;
+  for (const DoomMap& map : read) weight += static_cast<double>(map.linedefs.size() * builders.size());
+  Progress progress(std::cerr, ::isatty(STDERR_FILENO) != 0, "doom", "runs", read.size() * builders.size(), weight);
   std::vector<DoomRun> runs;
   for (const DoomMap& map : read)
-    for (const DoomBuilder& b : builders) runs.push_back(experiments::run_doom(iwad, wad, map, b, settings));
+    for (const DoomBuilder& b : builders) {
+      runs.push_back(experiments::run_doom(iwad, wad, map, b, settings));
+      progress.job_done(static_cast<double>(map.linedefs.size()));
+    }
+  progress.finish();
   const std::vector<DoomTotals> totals = experiments::doom_totals(runs);
   bool ours_ok = true;
   for (const DoomRun& r : runs) ours_ok &= r.kind != DoomBuilder::Kind::Heuristic || r.ok;

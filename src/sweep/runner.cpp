@@ -13,7 +13,7 @@
 #include "sweep/calibration.h"
 #include "sweep/environment.h"
 #include "sweep/journal.h"
-#include "sweep/progress.h"
+#include "common/progress.h"
 #include "results/report.h"
 
 namespace bsp::sweep {
@@ -116,7 +116,7 @@ nlohmann::json run_sweep(const suite::Suite& suite, const SweepOptions& options)
   double total_weight = 0;
   for (const auto& j : w.pending) total_weight += weight(*j);
   std::optional<Progress> progress;
-  if (options.log) progress.emplace(*options.log, options.log_is_terminal, w.pending.size(), total_weight);
+  if (options.log) progress.emplace(*options.log, options.log_is_terminal, "sweep", "jobs", w.pending.size(), total_weight);
   run_pending(w, journal, calibration.seconds, threads, experiments::RunContext{options.plant},
               progress ? &*progress : nullptr);
   if (progress) progress->finish();

@@ -1,10 +1,11 @@
-#include "sweep/progress.h"
+#include "common/progress.h"
 
 #include <cstdio>
 #include <ostream>
 #include <string>
+#include <utility>
 
-namespace bsp::sweep {
+namespace bsp {
 
 namespace {
 
@@ -17,8 +18,10 @@ std::string clock_text(double seconds) {
 
 }  // namespace
 
-Progress::Progress(std::ostream& out, bool terminal, std::uint64_t total_jobs, double total_weight)
-    : out_(out), terminal_(terminal), total_(total_jobs), total_weight_(total_weight),
+Progress::Progress(std::ostream& out, bool terminal, std::string label, std::string unit, std::uint64_t total_items,
+                   double total_weight)
+    : out_(out), terminal_(terminal), label_(std::move(label)), unit_(std::move(unit)), total_(total_items),
+      total_weight_(total_weight),
       start_(std::chrono::steady_clock::now()), last_print_(start_) {}
 
 void Progress::job_done(double weight) {
@@ -34,13 +37,13 @@ void Progress::print(bool final_line) {
   const double elapsed = std::chrono::duration<double>(last_print_ - start_).count();
   const double rate = elapsed > 0 ? static_cast<double>(done_) / elapsed : 0.0;
   const double fraction = total_weight_ > 0 ? done_weight_ / total_weight_ : 1.0;
-  std::string line = "sweep: " + std::to_string(done_) + "/" + std::to_string(total_) + " jobs";
+  std::string line = label_ + ": " + std::to_string(done_) + "/" + std::to_string(total_) + " " + unit_;
   char buf[96];
-  std::snprintf(buf, sizeof buf, ", %.2f jobs/s, elapsed %s", rate, clock_text(elapsed).c_str());
+  std::snprintf(buf, sizeof buf, ", %.2f %s/s, elapsed %s", rate, unit_.c_str(), clock_text(elapsed).c_str());
   line += buf;
   if (!final_line && fraction > 0) line += ", about " + clock_text(elapsed * (1 - fraction) / fraction) + " left";
   if (terminal_) out_ << "\r\033[K" << line << (final_line ? "\n" : "") << std::flush;
   else out_ << line << "\n" << std::flush;
 }
 
-}  // namespace bsp::sweep
+}  // namespace bsp
