@@ -32,15 +32,12 @@ HeuristicChoice HeuristicChoice::parse(const std::string& label) {
 
 const std::vector<ParamSpec>& params_of(const std::string& name) {
   if (const SearchInfo* s = find_search(name)) return s->params;
-  try {
-    return find_heuristic(name).params;
-  } catch (const UsageError& e) {
-    std::string known;
-    for (const auto& s : searches()) known += ", " + s.name;
-    std::string message = e.what();
-    message.insert(message.size() - 1, known);  // inside the parenthesis that lists the heuristics
-    throw UsageError(message);
-  }
+  for (const auto& h : heuristics())
+    if (h.name == name) return h.params;
+  std::string known;
+  for (const auto& h : heuristics()) known += (known.empty() ? "" : ", ") + h.name;
+  for (const auto& s : searches()) known += ", " + s.name;
+  throw UsageError("unknown heuristic '" + name + "' (known: " + known + ")");
 }
 
 HeuristicChoice HeuristicChoice::of(const std::string& name, ParamAssignments params) {

@@ -29,6 +29,10 @@ struct Cost {
   auto operator<=>(const Cost&) const = default;
 };
 
+Objective objective_of(const ParamSet& p) {
+  return p.choice("objective") == "depth" ? Objective::Depth : Objective::Fragments;
+}
+
 Cost cost_of(const Tree& t, Objective o) {
   const auto fragments = static_cast<std::int64_t>(t.fragments.size());
   const std::int64_t depth = max_depth(t);
@@ -81,7 +85,7 @@ class Builds {
   Builds(std::span<const Polygon> input, const BuildOptions& options, const ParamSet& p, std::uint64_t seed,
          RecordSettings record, SearchBill& bill)
       : input_(input), options_(options), base_(p.choice("base")), seed_(seed), record_(record), bill_(bill),
-        objective_(p.choice("objective") == "depth" ? Objective::Depth : Objective::Fragments) {}
+        objective_(objective_of(p)) {}
 
   Trial build(Decisions d) {
     auto decisions = std::make_shared<const Decisions>(std::move(d));
@@ -223,7 +227,7 @@ Tree restarts(std::span<const Polygon> input, const BuildOptions& options, const
   const std::string& base = p.choice("base");
   const std::string& vary = p.choice("vary");
   const ParamSpec* spec = varied_spec(p);
-  const Objective objective = p.choice("objective") == "depth" ? Objective::Depth : Objective::Fragments;
+  const Objective objective = objective_of(p);
   const std::int64_t n = p.integer("n");
   std::optional<Tree> best;
   Cost best_cost;
