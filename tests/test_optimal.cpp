@@ -241,6 +241,27 @@ TEST(Optimal, MatchesMemoisedEnumerationWhereSubproblemsRecur) {
       }
 }
 
+// Three segments along the sides of a triangle, none crossing another's line: cutting by A then B
+// and by B then A reach one cell holding C. The expected costs' memo must find it again (a key of
+// the cell's exact vertices, which list its faces in the order of the cuts, does not), and the
+// value must still be the enumeration's.
+TEST(Optimal, ACellReachedByCutsInAnotherOrderIsOneSubproblem) {
+  const auto seg = [](double ax, double ay, double bx, double by, std::uint32_t source) {
+    return Polygon{{Vertex{{ax, ay, 0}}, Vertex{{bx, by, 0}}}, source};
+  };
+  // Counter-clockwise sides of the triangle (0,0), (4,0), (2,3), each kept off the corners.
+  const std::vector<Polygon> input{seg(0.5, 0, 3.5, 0, 0), seg(3.75, 0.375, 2.25, 2.625, 1),
+                                   seg(1.75, 2.625, 0.25, 0.375, 2)};
+  for (auto objective : {OptimalObjective::EPoint, OptimalObjective::ELine}) {
+    OptimalSettings s;
+    s.objective = objective;
+    const OptimalResult r = solve_optimal(input, s);
+    ASSERT_TRUE(r.optimal()) << objective_name(objective);
+    EXPECT_GT(r.stats.memo_hits, 0u) << objective_name(objective);
+    EXPECT_TRUE(close(r.upper, brute_force(input, objective, Shape::Strict, s.cell_margin))) << objective_name(objective);
+  }
+}
+
 TEST(Optimal, NoAutopartitionHeuristicBeatsTheOptimum) {
   for (const auto& [objective, n] : {std::pair{OptimalObjective::Fragments, 12u}, std::pair{OptimalObjective::EPoint, 8u}})
     for (const auto& [name, input] : small_scenes(n)) {

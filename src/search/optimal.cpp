@@ -67,10 +67,14 @@ struct State {
   bool expanded = false;
 };
 
-// A cell and its terms of the objective.
+// A cell and its terms of the objective. A cell is the root box cut by the planes on a path, and
+// paths that cut in another order, or by a plane another cut has made redundant, reach the same
+// cell: its key is the set of pooled planes (oriented towards it) that bound one of its faces, so
+// those paths share it.
 struct Cell {
   ConvexPolytope poly;
   double volume_share = 0, area_share = 0;  // of the root cell's
+  std::vector<std::uint32_t> planes;        // the key: sorted oriented plane ids with a face on them
 };
 
 std::uint64_t mix(std::uint64_t h, std::uint64_t v) { return splitmix64(h ^ v); }
@@ -90,7 +94,7 @@ class Solver {
       const ConvexPolytope box = ConvexPolytope::box(draft_.bounds.enlarged(s_.cell_margin));
       std::tie(root_volume_, root_area_) = measures(box);
       if (!(root_volume_ > 0)) throw UsageError("optimal: expected costs need a root cell with volume; use a margin > 0");
-      cell = intern_cell(box);
+      cell = intern_cell(box, {});
     }
     return intern_state(std::move(ids), cell);
   }
@@ -324,8 +328,8 @@ class Solver {
     k.own = node_term(coplanar, cell);
     std::uint32_t front_cell = kNone, back_cell = kNone;
     if (cell != kNone) {
-      if (!front.empty()) front_cell = intern_cell(cells_[cell].poly.clipped(plane, eps_));
-      if (!back.empty()) back_cell = intern_cell(cells_[cell].poly.clipped(plane.flipped(), eps_));
+      if (!front.empty()) front_cell = child_cell(cell, p);
+      if (!back.empty()) back_cell = child_cell(cell, PlanePool::flip(p));
     }
     if (!front.empty()) k.front = intern_state(std::move(front), front_cell);
     if (!back.empty()) k.back = intern_state(std::move(back), back_cell);
@@ -379,42 +383,61 @@ class Solver {
     return {s.area, s.perimeter};
   }
 
-  std::uint32_t intern_cell(ConvexPolytope poly) {
-    std::uint64_t h = poly.face_count();
-    for (std::size_t f = 0; f < poly.face_count(); ++f)
-      for (const Vec3& v : poly.face(f)) h = mix(mix(mix(h, bits(v.x)), bits(v.y)), bits(v.z));
+  // The part of `cell` in front of pooled plane `p`, interned by its key: the parent's planes and
+  // `p`, less those that no longer bound a face. A cell clipped away entirely keeps every plane, so
+  // it cannot take the key of a larger cell.
+  std::uint32_t child_cell(std::uint32_t cell, std::uint32_t p) {
+    ConvexPolytope poly = cells_[cell].poly.clipped(draft_.planes[p], eps_);
+    std::vector<std::uint32_t> key = cells_[cell].planes;
+    key.insert(std::upper_bound(key.begin(), key.end(), p), p);
+    if (!poly.empty())
+      std::erase_if(key, [&](std::uint32_t q) { return !has_face_on(poly, draft_.planes[q]); });
+    return intern_cell(std::move(poly), std::move(key));
+  }
+  // Whether a face of `poly` lies on `plane`: all its vertices within the tolerance of it.
+  bool has_face_on(const ConvexPolytope& poly, const Plane& plane) const {
+    for (std::size_t f = 0; f < poly.face_count(); ++f) {
+      const auto face = poly.face(f);
+      if (std::all_of(face.begin(), face.end(), [&](const Vec3& v) { return std::abs(plane.distance(v)) <= eps_; }))
+        return true;
+    }
+    return false;
+  }
+
+  // The cell of `key`, measured the first time a path reaches it.
+  std::uint32_t intern_cell(ConvexPolytope poly, std::vector<std::uint32_t> key) {
+    std::uint64_t h = mix(0xce11, key.size());
+    for (auto q : key) h = mix(h, q);
     const auto [lo, hi] = cell_index_.equal_range(h);
     for (auto it = lo; it != hi; ++it)
-      if (same_polytope(cells_[it->second].poly, poly)) return it->second;
+      if (cells_[it->second].planes == key) return it->second;
     Cell c;
     const auto [volume, area] = measures(poly);
     c.volume_share = volume / root_volume_;
     c.area_share = area / root_area_;
     c.poly = std::move(poly);
+    c.planes = std::move(key);
     cells_.push_back(std::move(c));
     const auto index = static_cast<std::uint32_t>(cells_.size() - 1);
     cell_index_.emplace(h, index);
     return index;
   }
-  static bool same_polytope(const ConvexPolytope& a, const ConvexPolytope& b) {
-    if (a.face_count() != b.face_count()) return false;
-    for (std::size_t f = 0; f < a.face_count(); ++f) {
-      const auto x = a.face(f), y = b.face(f);
-      if (!std::equal(x.begin(), x.end(), y.begin(), y.end(),
-                      [](const Vec3& p, const Vec3& q) { return p.x == q.x && p.y == q.y && p.z == q.z; }))
-        return false;
-    }
-    return true;
-  }
 
+  // A state of the fragments objective is its fragment set, whatever its cell. One of the expected
+  // costs is its cell, which decides which fragments it holds: a convex cell holds at most one piece
+  // of each input fragment, so its sources name them, while their vertices may differ in the last
+  // bits between paths that cut in different orders (the sources stay in the key, so a piece the
+  // tolerance dropped on one path only keeps the states apart).
   std::uint32_t intern_state(std::vector<std::uint32_t> frags, std::uint32_t cell) {
-    std::sort(frags.begin(), frags.end());
+    const auto key = [&](std::uint32_t id) { return cell == kNone ? id : draft_.store.source(id); };
+    std::sort(frags.begin(), frags.end(), [&](auto a, auto b) { return key(a) < key(b); });
     std::uint64_t h = mix(0x5eed, cell);
-    for (auto id : frags) h = mix(h, id);
+    for (auto id : frags) h = mix(h, key(id));
     const auto [lo, hi] = state_index_.equal_range(h);
     for (auto it = lo; it != hi; ++it) {
       const State& st = states_[it->second];
-      if (st.cell == cell && st.frags == frags) {
+      if (st.cell == cell && std::equal(st.frags.begin(), st.frags.end(), frags.begin(), frags.end(),
+                                        [&](auto a, auto b) { return key(a) == key(b); })) {
         ++stats_.memo_hits;
         return it->second;
       }
