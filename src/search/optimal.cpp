@@ -46,6 +46,11 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The expected costs are sums of doubles whose order differs between a bound and the value it
 // bounds: a bound within this relative distance of another counts as reaching it.
 constexpr double kCostSlack = 1e-12;
+// Each pass of the search raises its target by this share of the proved lower bound (by 1 for the
+// fragments): small steps keep each pass's bound tight, and their passes are cheap because the memo
+// keeps every bound proved. At 32 segments (E_point) 2% takes 4 to 7 s where one pass against the
+// greedy tree takes 7 to 11.
+constexpr double kTargetStep = 0.02;
 // The clock is read at one budget check in 256: a check costs a few nanoseconds, a clock read tens.
 constexpr std::uint64_t kClockEvery = 255;
 
@@ -125,6 +130,21 @@ class Solver {
         State& st = states_[item.state];
         st.ub = candidate_ub(st.choice);
       }
+    }
+  }
+
+  // Solves `s` by targets raised from its lower bound: each pass proves the value reaches the
+  // target or finds a tree below it. Searched against the greedy tree's value alone, the first
+  // candidates are refined deep under a loose bound and the lower bound rises only at the end; by
+  // small targets it rises pass by pass, each pass bounded tightly and reusing the memo's bounds
+  // (iterative deepening [Korf1985] on the bound), so a budget that runs out leaves a useful interval.
+  void deepen(std::uint32_t s) {
+    const double unit = s_.objective == OptimalObjective::Fragments ? 1.0 : 0.0;
+    expand(s);
+    while (!known(s) && !out_of_budget()) {
+      // A bound of 0 (E_point of coarse trees) steps by a share of the incumbent instead.
+      const State& st = states_[s];
+      solve(s, st.lb + std::max({unit, kTargetStep * st.lb, st.lb > 0 ? 0.0 : kTargetStep * st.ub}));
     }
   }
 
@@ -507,7 +527,7 @@ OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSetting
   const std::uint32_t root = solver.root(std::move(ids));
   solver.greedy(root);
   out.greedy = solver.state(root).ub;
-  solver.solve(root, kInf);
+  solver.deepen(root);
 
   // Walk the tree of choices from the root, summing its value and recording each node's plane.
   auto choices = std::make_shared<Decisions>();
