@@ -70,6 +70,7 @@ struct State {
   std::uint32_t choice = kNone;  // the candidate achieving ub, or kLeaf
   std::uint32_t cand_begin = 0, cand_end = 0;  // its candidates in Solver::cands_, once expanded
   bool expanded = false;
+  std::uint32_t visited = 0;  // the last descent that met it
 };
 
 // A cell and its terms of the objective. A cell is the root box cut by the planes on a path, and
@@ -104,31 +105,40 @@ class Solver {
     return intern_state(std::move(ids), cell);
   }
 
-  // Gives every state of the greedy tree below `s` an upper bound and a choice.
-  void greedy(std::uint32_t s) {
+  // Follows the least-bound candidate from `s` down (expanding what it meets) and gives each state
+  // on that tree its value as an upper bound and choice where that is lower than what it has. On
+  // fresh states it is the greedy tree, the first incumbent; after a pass of the search it is the
+  // tree the pass's bounds point to, so the incumbent improves while the bound rises.
+  void descend(std::uint32_t s) {
     struct Item {
       std::uint32_t state;
-      bool children_done;
+      std::uint32_t cand;  // kNone on the way down; the candidate followed on the way up
     };
-    std::vector<Item> stack{{s, false}};
+    ++epoch_;
+    std::vector<Item> stack{{s, kNone}};
     while (!stack.empty()) {
       const Item item = stack.back();
       stack.pop_back();
-      if (!item.children_done) {
-        if (states_[item.state].ub < kInf) continue;
+      if (item.cand == kNone) {
+        // A state shared by two branches is finished before the second meets it (the memo's
+        // subproblems form a DAG), so one visit per descent is enough.
+        if (states_[item.state].visited == epoch_) continue;
+        states_[item.state].visited = epoch_;
         expand(item.state);
         const State& st = states_[item.state];
-        if (st.choice == kLeaf) continue;
+        if (st.choice == kLeaf || known(item.state)) continue;
         std::uint32_t best = kNone;
         for (auto c = st.cand_begin; c < st.cand_end; ++c)
           if (best == kNone || candidate_lb(c) < candidate_lb(best)) best = c;
-        states_[item.state].choice = best;
-        stack.push_back({item.state, true});
+        stack.push_back({item.state, best});
         for (auto child : {cands_[best].front, cands_[best].back})
-          if (child != kNone) stack.push_back({child, false});
+          if (child != kNone) stack.push_back({child, kNone});
       } else {
         State& st = states_[item.state];
-        st.ub = candidate_ub(st.choice);
+        if (const double value = candidate_ub(item.cand); value < st.ub) {
+          st.ub = value;
+          st.choice = item.cand;
+        }
       }
     }
   }
@@ -145,6 +155,7 @@ class Solver {
       // A bound of 0 (E_point of coarse trees) steps by a share of the incumbent instead.
       const State& st = states_[s];
       solve(s, st.lb + std::max({unit, kTargetStep * st.lb, st.lb > 0 ? 0.0 : kTargetStep * st.ub}));
+      descend(s);
     }
   }
 
@@ -487,6 +498,7 @@ class Solver {
   Polygon whole_, front_, back_;
   OptimalStats stats_;
   std::uint64_t budget_checks_ = 0;
+  std::uint32_t epoch_ = 0;  // descents so far
   bool budget_hit_ = false;
 };
 
@@ -525,7 +537,7 @@ OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSetting
   }
   Solver solver(settings, draft, all_segments(input), planes);
   const std::uint32_t root = solver.root(std::move(ids));
-  solver.greedy(root);
+  solver.descend(root);
   out.greedy = solver.state(root).ub;
   solver.deepen(root);
 
