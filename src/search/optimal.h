@@ -27,9 +27,10 @@
 // cost objectives); a candidate's bound
 // is own(P) + lb(front) + lb(back), and a subproblem's lb is the least of its candidates'. A greedy
 // tree (each cell cut by the candidate of least bound) gives every state it meets a first ub; the
-// depth-first search then refines candidates in order of their bounds, each with the bound it
-// must beat, until lb = ub at the root (optimal) or the budget runs out (an interval, never a
-// silent approximation).
+// depth-first search then runs in passes under a target raised a step above the root's lb
+// [Korf1985], each refining candidates in order of their bounds with the bound they must beat,
+// until lb = ub at the root (optimal) or the budget runs out (an interval, never a silent
+// approximation).
 //
 // The certificate. The solver's choices are replayed through build_tree (tree/build.h), so the
 // tree it returns is an ordinary tree that the tree invariants, the order check and the metrics
