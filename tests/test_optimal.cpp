@@ -229,7 +229,7 @@ TEST(Optimal, MatchesMemoisedEnumerationWhereSubproblemsRecur) {
                                                               {OptimalObjective::ELine, 8}};
   for (const auto& [objective, n] : cases)
     for (const auto& [name, input] : small_scenes(n))
-      for (auto shape : {Shape::Strict, Shape::Coarse}) {
+      for (auto shape : {Shape::Strict, Shape::Coarse, Shape::Leafy}) {
         OptimalSettings s;
         s.objective = objective;
         s.shape = shape;
@@ -262,6 +262,28 @@ TEST(Optimal, ACellReachedByCutsInAnotherOrderIsOneSubproblem) {
   }
 }
 
+// Parallel segments stacked in a column: every cell is a slab between two of their lines (or the
+// box), and a cut below a slab's floor is redundant once the floor is cut. Keyed by its bounding
+// planes alone, each slab is one subproblem, so there are at most (n + 1)(n + 2) / 2 of them; a
+// key that kept the redundant planes would count one per set of cuts.
+TEST(Optimal, ACellKeepsOnlyThePlanesThatBoundIt) {
+  constexpr std::uint32_t n = 10;
+  std::vector<Polygon> input;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const double y = i;
+    const bool up = i % 2 == 0;  // alternate the fronts, so that both sides of a cut hold segments
+    input.push_back(Polygon{{Vertex{{up ? 1.0 : 0.0, y, 0}}, Vertex{{up ? 0.0 : 1.0, y, 0}}}, i});
+  }
+  for (auto objective : {OptimalObjective::EPoint, OptimalObjective::ELine}) {
+    OptimalSettings s;
+    s.objective = objective;
+    const OptimalResult r = solve_optimal(input, s);
+    ASSERT_TRUE(r.optimal()) << objective_name(objective);
+    EXPECT_LE(r.stats.states, (n + 1) * (n + 2) / 2) << objective_name(objective);
+    EXPECT_TRUE(close(r.upper, brute_force(input, objective, Shape::Strict, s.cell_margin, true))) << objective_name(objective);
+  }
+}
+
 TEST(Optimal, NoAutopartitionHeuristicBeatsTheOptimum) {
   for (const auto& [objective, n] : {std::pair{OptimalObjective::Fragments, 12u}, std::pair{OptimalObjective::EPoint, 8u}})
     for (const auto& [name, input] : small_scenes(n)) {
@@ -291,7 +313,27 @@ TEST(Optimal, ExhaustedBudgetGivesAnIntervalHoldingTheOptimum) {
   EXPECT_LE(cut.lower, full.upper);
   EXPECT_GE(cut.upper, full.upper);
   EXPECT_EQ(cut.upper, static_cast<double>(cut.tree.fragments.size())) << "the interval's upper end is its tree's";
+  EXPECT_EQ(cut.lower, std::floor(cut.lower)) << "a bound on a whole number of fragments is whole";
   EXPECT_EQ(check_tree_invariants(cut.tree, input).violations, 0u);
+}
+
+TEST(Optimal, ExhaustedBudgetGivesAnIntervalHoldingTheExpectedCost) {
+  const std::vector<Polygon> input = make_scene("random-segments", {{"n", "20"}, {"seed", "2"}}).polygons;
+  for (auto objective : {OptimalObjective::EPoint, OptimalObjective::ELine}) {
+    OptimalSettings s;
+    s.objective = objective;
+    const OptimalResult full = solve_optimal(input, s);
+    ASSERT_TRUE(full.optimal()) << objective_name(objective);
+    s.max_states = 500;
+    const OptimalResult cut = solve_optimal(input, s);
+    EXPECT_TRUE(cut.stats.out_of_states) << objective_name(objective);
+    EXPECT_LE(cut.lower, full.upper * (1 + 1e-12)) << objective_name(objective);
+    EXPECT_GE(cut.upper, full.upper * (1 - 1e-12)) << objective_name(objective);
+    EXPECT_LE(cut.upper, cut.greedy * (1 + 1e-12)) << objective_name(objective);
+    EXPECT_TRUE(close(experiments::objective_value(cut.tree, input, objective, s.cell_margin), cut.upper))
+        << objective_name(objective) << ": the interval's upper end is its tree's";
+    EXPECT_EQ(check_tree_invariants(cut.tree, input).violations, 0u) << objective_name(objective);
+  }
 }
 
 TEST(Optimal, TooManyPlanesIsRefused) {

@@ -1,6 +1,7 @@
 #include "search/optimal.h"
 
 #include <algorithm>
+#include <cassert>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -46,11 +47,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The expected costs are sums of doubles whose order differs between a bound and the value it
 // bounds: a bound within this relative distance of another counts as reaching it.
 constexpr double kCostSlack = 1e-12;
-// Each pass of the search raises its target by this share of the proved lower bound (by 1 for the
-// fragments): small steps keep each pass's bound tight, and their passes are cheap because the memo
+// Each pass of the search raises its target by this share of the proved lower bound (to the next
+// whole number for the fragments): small steps keep each pass's bound tight, and their passes are cheap because the memo
 // keeps every bound proved. At 32 segments (E_point) 2% takes 4 to 7 s where one pass against the
 // greedy tree takes 7 to 11.
 constexpr double kTargetStep = 0.02;
+// Seeds of the memo's hashes, one per table, so that a cell key and a state key of the same numbers
+// do not hash alike by construction.
+constexpr std::uint64_t kCellHashSeed = 0xce11, kStateHashSeed = 0x5eed;
 // The clock is read at one budget check in 256: a check costs a few nanoseconds, a clock read tens.
 constexpr std::uint64_t kClockEvery = 255;
 
@@ -62,7 +66,8 @@ struct Candidate {
   double floor = 0;  // a bound a refinement proved without raising its children's bounds enough to show
 };
 
-// A subproblem: a cell's fragments (interned ids, sorted) and, for the cost objectives, the cell.
+// A subproblem: a cell's fragments (interned ids; sorted by id, or by source for the cost
+// objectives, whose key they are: intern_state) and, for the cost objectives, the cell.
 struct State {
   std::vector<std::uint32_t> frags;
   std::uint32_t cell = kNone;
@@ -109,7 +114,10 @@ class Solver {
   // on that tree its value as an upper bound and choice where that is lower than what it has. On
   // fresh states it is the greedy tree, the first incumbent; after a pass of the search it is the
   // tree the pass's bounds point to, so the incumbent improves while the bound rises.
-  void descend(std::uint32_t s) {
+  // A budgeted descent stops where a state would need expanding past the state budget; the bounds
+  // it has set by then are each a whole subtree's value. The first descent, which gives the root its
+  // first tree, is not budgeted.
+  void descend(std::uint32_t s, bool budgeted) {
     struct Item {
       std::uint32_t state;
       std::uint32_t cand;  // kNone on the way down; the candidate followed on the way up
@@ -124,6 +132,7 @@ class Solver {
         // subproblems form a DAG), so one visit per descent is enough.
         if (states_[item.state].visited == epoch_) continue;
         states_[item.state].visited = epoch_;
+        if (budgeted && !states_[item.state].expanded && states_.size() >= s_.max_states) return;
         expand(item.state);
         const State& st = states_[item.state];
         if (st.choice == kLeaf || known(item.state)) continue;
@@ -149,14 +158,18 @@ class Solver {
   // small targets it rises pass by pass, each pass bounded tightly and reusing the memo's bounds
   // (iterative deepening [Korf1985] on the bound), so a budget that runs out leaves a useful interval.
   void deepen(std::uint32_t s) {
-    const double unit = s_.objective == OptimalObjective::Fragments ? 1.0 : 0.0;
     expand(s);
     while (!known(s) && !out_of_budget()) {
-      // A bound of 0 (E_point of coarse trees) steps by a share of the incumbent instead.
-      const State& st = states_[s];
-      solve(s, st.lb + std::max({unit, kTargetStep * st.lb, st.lb > 0 ? 0.0 : kTargetStep * st.ub}));
-      descend(s);
+      solve(s, next_target(states_[s]));
+      if (!budget_hit_) descend(s, true);
     }
+  }
+  // Fragments are whole numbers, so their target is the next one: a fractional target would leave
+  // a fractional bound that proves no more. A cost's bound of 0 (E_point of coarse and leafy trees)
+  // steps by a share of the incumbent instead.
+  double next_target(const State& st) const {
+    if (s_.objective == OptimalObjective::Fragments) return std::floor(st.lb) + 1;
+    return st.lb + (st.lb > 0 ? kTargetStep * st.lb : kTargetStep * st.ub);
   }
 
   // Refines `s` until its value is known or proved at least `beta` (or the budget runs out).
@@ -420,6 +433,9 @@ class Solver {
   std::uint32_t child_cell(std::uint32_t cell, std::uint32_t p) {
     ConvexPolytope poly = cells_[cell].poly.clipped(draft_.planes[p], eps_);
     std::vector<std::uint32_t> key = cells_[cell].planes;
+    // A plane already bounding the cell has its fragments stored above or sent to one side (leafy),
+    // so no candidate repeats it; a repeat would give one cell two keys.
+    assert(!std::binary_search(key.begin(), key.end(), p) && !std::binary_search(key.begin(), key.end(), PlanePool::flip(p)));
     key.insert(std::upper_bound(key.begin(), key.end(), p), p);
     if (!poly.empty())
       std::erase_if(key, [&](std::uint32_t q) { return !has_face_on(poly, draft_.planes[q]); });
@@ -437,7 +453,7 @@ class Solver {
 
   // The cell of `key`, measured the first time a path reaches it.
   std::uint32_t intern_cell(ConvexPolytope poly, std::vector<std::uint32_t> key) {
-    std::uint64_t h = mix(0xce11, key.size());
+    std::uint64_t h = mix(kCellHashSeed, key.size());
     for (auto q : key) h = mix(h, q);
     const auto [lo, hi] = cell_index_.equal_range(h);
     for (auto it = lo; it != hi; ++it)
@@ -454,15 +470,15 @@ class Solver {
     return index;
   }
 
-  // A state of the fragments objective is its fragment set, whatever its cell. One of the expected
-  // costs is its cell, which decides which fragments it holds: a convex cell holds at most one piece
+  // A state of the fragments objective is its fragment set, whatever its cell. A state of an
+  // expected cost is its cell, which decides which fragments it holds: a convex cell holds at most one piece
   // of each input fragment, so its sources name them, while their vertices may differ in the last
   // bits between paths that cut in different orders (the sources stay in the key, so a piece the
   // tolerance dropped on one path only keeps the states apart).
   std::uint32_t intern_state(std::vector<std::uint32_t> frags, std::uint32_t cell) {
     const auto key = [&](std::uint32_t id) { return cell == kNone ? id : draft_.store.source(id); };
     std::sort(frags.begin(), frags.end(), [&](auto a, auto b) { return key(a) < key(b); });
-    std::uint64_t h = mix(0x5eed, cell);
+    std::uint64_t h = mix(kStateHashSeed, cell);
     for (auto id : frags) h = mix(h, key(id));
     const auto [lo, hi] = state_index_.equal_range(h);
     for (auto it = lo; it != hi; ++it) {
@@ -537,7 +553,7 @@ OptimalResult solve_optimal(std::span<const Polygon> input, const OptimalSetting
   }
   Solver solver(settings, draft, all_segments(input), planes);
   const std::uint32_t root = solver.root(std::move(ids));
-  solver.descend(root);
+  solver.descend(root, false);
   out.greedy = solver.state(root).ub;
   solver.deepen(root);
 
