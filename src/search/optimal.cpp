@@ -1,8 +1,8 @@
 #include "search/optimal.h"
 
 #include <algorithm>
-#include <cassert>
 #include <bit>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -48,9 +48,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // bounds: a bound within this relative distance of another counts as reaching it.
 constexpr double kCostSlack = 1e-12;
 // Each pass of the search raises its target by this share of the proved lower bound (to the next
-// whole number for the fragments): small steps keep each pass's bound tight, and their passes are cheap because the memo
-// keeps every bound proved. At 32 segments (E_point) 2% takes 4 to 7 s where one pass against the
-// greedy tree takes 7 to 11.
+// whole number for the fragments): small steps keep each pass's bound tight, and their passes are
+// cheap because the memo keeps every bound proved. At 32 segments (E_point) 2% takes 4 to 7 s where
+// one pass against the greedy tree takes 7 to 11.
 constexpr double kTargetStep = 0.02;
 // Seeds of the memo's hashes, one per table, so that a cell key and a state key of the same numbers
 // do not hash alike by construction.
@@ -113,10 +113,10 @@ class Solver {
   // Follows the least-bound candidate from `s` down (expanding what it meets) and gives each state
   // on that tree its value as an upper bound and choice where that is lower than what it has. On
   // fresh states it is the greedy tree, the first incumbent; after a pass of the search it is the
-  // tree the pass's bounds point to, so the incumbent improves while the bound rises.
-  // A budgeted descent stops where a state would need expanding past the state budget; the bounds
-  // it has set by then are each a whole subtree's value. The first descent, which gives the root its
-  // first tree, is not budgeted.
+  // tree the pass's bounds point to, so the incumbent improves while the bound rises. A budgeted
+  // descent stops where a state would need expanding past the state budget; the bounds it has set
+  // by then are each a whole subtree's value. The first descent, which gives the root its first
+  // tree, is not budgeted.
   void descend(std::uint32_t s, bool budgeted) {
     struct Item {
       std::uint32_t state;
@@ -435,7 +435,8 @@ class Solver {
     std::vector<std::uint32_t> key = cells_[cell].planes;
     // A plane already bounding the cell has its fragments stored above or sent to one side (leafy),
     // so no candidate repeats it; a repeat would give one cell two keys.
-    assert(!std::binary_search(key.begin(), key.end(), p) && !std::binary_search(key.begin(), key.end(), PlanePool::flip(p)));
+    assert(!std::binary_search(key.begin(), key.end(), p) &&
+           !std::binary_search(key.begin(), key.end(), PlanePool::flip(p)));
     key.insert(std::upper_bound(key.begin(), key.end(), p), p);
     if (!poly.empty())
       std::erase_if(key, [&](std::uint32_t q) { return !has_face_on(poly, draft_.planes[q]); });
@@ -471,10 +472,10 @@ class Solver {
   }
 
   // A state of the fragments objective is its fragment set, whatever its cell. A state of an
-  // expected cost is its cell, which decides which fragments it holds: a convex cell holds at most one piece
-  // of each input fragment, so its sources name them, while their vertices may differ in the last
-  // bits between paths that cut in different orders (the sources stay in the key, so a piece the
-  // tolerance dropped on one path only keeps the states apart).
+  // expected cost is its cell, which decides which fragments it holds: a convex cell holds at most
+  // one piece of each input fragment, so its sources name them, while their vertices may differ in
+  // the last bits between paths that cut in different orders (the sources stay in the key, so a
+  // piece the tolerance dropped on one path only keeps the states apart).
   std::uint32_t intern_state(std::vector<std::uint32_t> frags, std::uint32_t cell) {
     const auto key = [&](std::uint32_t id) { return cell == kNone ? id : draft_.store.source(id); };
     std::sort(frags.begin(), frags.end(), [&](auto a, auto b) { return key(a) < key(b); });
