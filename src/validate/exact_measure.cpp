@@ -524,15 +524,15 @@ ExactCorefine exact_corefine(std::span<const std::vector<GridPoint>> a, std::spa
 namespace {
 
 // Left to right, or as a balanced tree (exact_measure.h); `operations` counts the binary ones done.
-ProgramOperand fold(std::vector<ProgramOperand> ops, StepKind kind, Order order, std::uint64_t& operations) {
+ProgramOperand fold(std::vector<ProgramOperand> ops, StepKind kind, FoldOrder order, std::uint64_t& operations) {
   if (ops.empty()) return std::nullopt;
-  if (order == Order::Balanced && kind == StepKind::Difference && ops.size() > 2) {
+  if (order == FoldOrder::Balanced && kind == StepKind::Difference && ops.size() > 2) {
     std::vector<ProgramOperand> rest(std::make_move_iterator(ops.begin() + 1), std::make_move_iterator(ops.end()));
     ProgramOperand cut = fold(std::move(rest), StepKind::Union, order, operations);
     operations += ops[0] && cut;
     return combine(std::move(ops[0]), std::move(cut), kind);
   }
-  if (order == Order::Balanced && kind != StepKind::Difference) {
+  if (order == FoldOrder::Balanced && kind != StepKind::Difference) {
     while (ops.size() > 1) {
       std::vector<ProgramOperand> next;
       for (std::size_t i = 0; i + 1 < ops.size(); i += 2) {
@@ -554,7 +554,7 @@ ProgramOperand fold(std::vector<ProgramOperand> ops, StepKind kind, Order order,
 
 }  // namespace
 
-ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, Order order,
+ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, FoldOrder order,
                                           const std::vector<std::vector<Polygon>>* hulls) {
   std::size_t next_hull = 0;
   const auto start = std::chrono::steady_clock::now();

@@ -73,7 +73,7 @@ ExactCorefine exact_corefine(std::span<const std::vector<GridPoint>> a, std::spa
 // closed outward meshes of convex polygons whose coordinates are doubles taken exactly (grid units
 // for the exact kernel). A hull step is CGAL's convex_hull_3 of its operands' vertices; an empty
 // operand is kept as such (a union ignores it, an intersection becomes empty). CGAL's failure is
-// reported in `error`, not thrown: a peer that fails is a result. Order::Balanced combines the
+// reported in `error`, not thrown: a peer that fails is a result. FoldOrder::Balanced combines the
 // operands of each step as a balanced tree instead (a union or intersection pairwise in rounds; a
 // difference as the first minus the balanced union of the others): the same solid at O(n log n)
 // corefinements of growing meshes instead of O(n^2), for a reference where the order is not the
@@ -86,18 +86,18 @@ struct ExactProgramVolume {
   std::size_t triangles = 0;     // of the final mesh
   std::string error;
 };
-enum class Order : std::uint8_t { LeftToRight, Balanced };
+enum class FoldOrder : std::uint8_t { LeftToRight, Balanced };
 // `hulls`, when given, are the hull steps' results in order (one mesh each, empty for none): a proof
 // takes the evaluator's hulls as it takes its leaves, so both measure the same polyhedra.
 ExactProgramVolume exact_corefine_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps,
-                                          Order order = Order::LeftToRight,
+                                          FoldOrder order = FoldOrder::LeftToRight,
                                           const std::vector<std::vector<Polygon>>* hulls = nullptr);
 
 // The same program with CGAL's Nef polyhedra (exact_nef.cpp), which, unlike corefinement, accept
 // the non-manifold solids a program can make (two parts touching along an edge or at a vertex) as
 // operands of the next step: the reference where corefinement refuses an intermediate result.
 ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps,
-                                     Order order = Order::LeftToRight,
+                                     FoldOrder order = FoldOrder::LeftToRight,
                                      const std::vector<std::vector<Polygon>>* hulls = nullptr);
 
 }  // namespace bsp

@@ -53,14 +53,14 @@ Nef hull(std::span<const Nef> operands) {
   return Nef(out);
 }
 
-Nef fold(std::vector<Nef> ops, StepKind kind, Order order, std::uint64_t& operations) {
+Nef fold(std::vector<Nef> ops, StepKind kind, FoldOrder order, std::uint64_t& operations) {
   if (ops.empty()) return Nef();
-  if (order == Order::Balanced && kind == StepKind::Difference && ops.size() > 2) {
+  if (order == FoldOrder::Balanced && kind == StepKind::Difference && ops.size() > 2) {
     Nef cut = fold(std::vector<Nef>(ops.begin() + 1, ops.end()), StepKind::Union, order, operations);
     ++operations;
     return ops[0] - cut;
   }
-  if (order == Order::Balanced && kind != StepKind::Difference) {
+  if (order == FoldOrder::Balanced && kind != StepKind::Difference) {
     while (ops.size() > 1) {
       std::vector<Nef> next;
       for (std::size_t i = 0; i + 1 < ops.size(); i += 2, ++operations) next.push_back(combine(ops[i], ops[i + 1], kind));
@@ -97,7 +97,7 @@ NefResult nef_set_operation(std::span<const Polygon> a, std::span<const Polygon>
   return r;
 }
 
-ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, Order order,
+ExactProgramVolume exact_nef_program(std::span<const std::vector<Polygon>> leaves, std::span<const Step> steps, FoldOrder order,
                                      const std::vector<std::vector<Polygon>>* hulls) {
   std::size_t next_hull = 0;
   const auto start = std::chrono::steady_clock::now();

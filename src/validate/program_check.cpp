@@ -117,11 +117,11 @@ void sample(ProgramCheck& c, std::span<const std::vector<Polygon>> leaves, const
 // mesh: parts touching along an edge), Nef polyhedra, which take any solid.
 void corefine_volume(ProgramCheck& c, std::span<const std::vector<Polygon>> leaves, const std::vector<std::vector<Polygon>>& hulls,
                      std::span<const Step> steps, double unit) {
-  ExactProgramVolume r = exact_corefine_program(leaves, steps, Order::Balanced, &hulls);
+  ExactProgramVolume r = exact_corefine_program(leaves, steps, FoldOrder::Balanced, &hulls);
   c.reference = "corefine";
   if (!r.error.empty()) {
     c.corefine_refused = r.error;
-    r = exact_nef_program(leaves, steps, Order::Balanced, &hulls);
+    r = exact_nef_program(leaves, steps, FoldOrder::Balanced, &hulls);
     c.reference = "nef";
   }
   c.corefine_error = r.error;
