@@ -13,7 +13,7 @@
 namespace bsp::cli {
 
 inline constexpr int kExitUsage = 2;     // bad arguments or bad input (UsageError, InputError)
-inline constexpr int kExitInternal = 3;  // anything else: a bug or the machine (out of memory, Embree)
+inline constexpr int kExitInternal = 3;  // a plugin's exception, or anything else: a bug or the machine (out of memory, Embree)
 
 // `usage` is printed after a UsageError; `body` returns the command's exit code.
 template <class Body>
@@ -28,6 +28,8 @@ int run_guarded(std::string_view command, std::string_view usage, Body&& body, s
   } catch (const InputError& e) {
     line(e.what());
     return kExitUsage;
+  } catch (const PluginError& e) {
+    line(e.what());
   } catch (const std::bad_alloc&) {
     line("internal error: out of memory");
   } catch (const std::exception& e) {

@@ -2,8 +2,11 @@
 //   0  success (and `--help`, `COMMAND --help`, `--version`)
 //   1  a check failed (validation violations, a regression)
 //   2  bad arguments or bad input: one line naming the problem (and the usage line for arguments)
-//   3  an internal error: any other exception (out of memory, an Embree error, a bug), reported as
-//      one line "bspbench COMMAND: internal error: ..." instead of std::terminate (cli/guard.h)
+//   3  an exception thrown by a plugin's code, reported as one line naming the plugin; or an
+//      internal error: any other exception (out of memory, an Embree error, a bug), reported as one
+//      line "bspbench COMMAND: internal error: ..." instead of std::terminate (cli/guard.h)
+// Every command takes --plugin PATH.so, repeatable: the plugin's heuristics are registered before
+// the command runs (experiments/plugin_loader.h).
 #include <algorithm>
 #include <iostream>
 #include <string>
@@ -11,18 +14,39 @@
 
 #include "cli/commands.h"
 #include "cli/guard.h"
+#include "common/errors.h"
 #include "common/revision.h"
+#include "experiments/plugin_loader.h"
 
 namespace {
 
 void print_help() {
-  std::cout << "usage: bspbench COMMAND [options]   (bspbench COMMAND --help for its options)\n"
-               "       bspbench --version\n\ncommands:\n";
+  std::cout << "usage: bspbench COMMAND [options] [--plugin PATH.so ...]   (bspbench COMMAND --help for its options)\n"
+               "       bspbench --version\n\n"
+               "--plugin PATH.so (any command, repeatable) registers a plugin's heuristics (examples/my_heuristic)\n\n"
+               "commands:\n";
   for (const auto& c : bsp::cli::commands()) std::cout << "  " << c.name << "\t" << c.summary << "\n";
 }
 
 bool asks_for_help(const std::vector<std::string>& args) {
   return std::any_of(args.begin(), args.end(), [](const std::string& a) { return a == "--help" || a == "-h"; });
+}
+
+// Takes every "--plugin PATH" and "--plugin=PATH" out of `args` and loads the plugins. Throws
+// UsageError for a --plugin without a path, InputError or PluginError for a bad plugin.
+void load_plugins(std::vector<std::string>& args) {
+  std::vector<std::string> rest;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i].starts_with("--plugin=")) {
+      bsp::experiments::load_plugin(args[i].substr(9));
+    } else if (args[i] == "--plugin") {
+      if (i + 1 == args.size() || args[i + 1].empty()) throw bsp::UsageError("--plugin needs the path of a plugin (a .so)");
+      bsp::experiments::load_plugin(args[++i]);
+    } else {
+      rest.push_back(std::move(args[i]));
+    }
+  }
+  args = std::move(rest);
 }
 
 }  // namespace
@@ -44,8 +68,11 @@ int main(int argc, char** argv) {
       bsp::cli::print_command_help(command, std::cout);
       return 0;
     }
-    bsp::cli::Args args(std::move(rest));
-    return bsp::cli::run_guarded(command.name, command.usage, [&] { return command.run(args); }, std::cerr);
+    return bsp::cli::run_guarded(command.name, command.usage, [&] {
+      load_plugins(rest);
+      bsp::cli::Args args(std::move(rest));
+      return command.run(args);
+    }, std::cerr);
   }
   std::cerr << "bspbench: unknown command '" << first << "'; run bspbench --help\n";
   return 2;

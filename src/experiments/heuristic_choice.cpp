@@ -67,8 +67,17 @@ std::unique_ptr<Splitter> per_node_splitter(const std::string& name, const Param
   return HeuristicChoice::of(name, params).splitter(seed);
 }
 
+void add_plugin_identity(Hasher& key, const std::string& name) {
+  if (const PluginIdentity* p = heuristic_plugin(name)) key.add_string("plugin " + p->text());
+}
+
+std::string plugin_arguments(const std::string& name) {
+  const PluginIdentity* p = heuristic_plugin(name);
+  return p ? " --plugin " + p->path : std::string();
+}
+
 std::string HeuristicChoice::arguments() const {
-  std::string out = " --heuristic " + name;
+  std::string out = plugin_arguments(name) + " --heuristic " + name;
   for (const auto& [k, value] : params) out += " --param " + k + "=" + value;
   return out;
 }

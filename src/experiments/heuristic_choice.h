@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/hash.h"
 #include "common/params.h"
 #include "geometry/polygon.h"
 #include "split/splitter.h"
@@ -38,7 +39,8 @@ struct HeuristicChoice {
   static HeuristicChoice parse(const std::string& label);
   // NAME with `params` (as a command's --heuristic and --param give them), labelled NAME:k=v,k=v.
   static HeuristicChoice of(const std::string& name, ParamAssignments params);
-  // " --heuristic NAME --param k=v ...": how a command is told this choice.
+  // " --heuristic NAME --param k=v ...": how a command is told this choice (after
+  // " --plugin PATH" when a plugin registered it).
   std::string arguments() const;
   // Throws UsageError for a search: it has no per-node splitter.
   std::unique_ptr<Splitter> splitter(std::uint64_t seed) const;
@@ -50,6 +52,13 @@ struct HeuristicChoice {
   // The tree it builds from `input` with build_tree (a search builds several and keeps one).
   Tree build(std::span<const Polygon> input, const BuildOptions& options, std::uint64_t seed) const;
 };
+
+// What joins a job's key when a plugin registered the heuristic `name` (split/registry.h): the
+// plugin's name, version and file hash. Built-ins add nothing, so their keys stay as they were.
+void add_plugin_identity(Hasher& key, const std::string& name);
+// " --plugin PATH" when a plugin registered `name`, else empty: the commands that repeat a job
+// load it.
+std::string plugin_arguments(const std::string& name);
 
 // The parameters a heuristic or a search takes; throws UsageError naming both registries' names.
 const std::vector<ParamSpec>& params_of(const std::string& name);

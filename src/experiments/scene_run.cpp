@@ -78,6 +78,7 @@ std::string SceneRun::hash(const std::string& scene_text) const {
   h.add_string(scene_text);
   h.add_string(heuristic_label());
   h.add_string(heuristic_params().canonical());
+  if (heuristic) add_plugin_identity(h, heuristic->name);
   h.add_string(shape_name(shape));
   h.add_u64(seed);
   h.add_u64(views);

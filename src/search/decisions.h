@@ -64,6 +64,9 @@ class DecisionSplitter final : public Splitter {
   SplitChoice choose(const SplitContext& ctx) override;
   std::unique_ptr<Splitter> clone() const override;
   bool needs_cell() const override { return base_ && base_->needs_cell(); }
+  void check() const override {
+    if (base_) base_->check();
+  }
 
  private:
   void record(const SplitContext& ctx, const SplitChoice& chosen);

@@ -1,11 +1,17 @@
 #include "split/registry.h"
 
+#include <utility>
+
 #include "common/errors.h"
 
 namespace bsp {
 
-const std::vector<HeuristicInfo>& heuristics() {
-  static const std::vector<HeuristicInfo> all = {
+namespace {
+
+// The registry: built-ins first. Plugins add to it at start-up only (register_heuristic), so
+// lookups during a run read a table no one writes.
+struct Registry {
+  std::vector<HeuristicInfo> all = {
       first_heuristic(),
       random_heuristic(),
       balanced_heuristic(),
@@ -19,7 +25,34 @@ const std::vector<HeuristicInfo>& heuristics() {
       sah_heuristic(),
       zennode_heuristic(),
   };
-  return all;
+  std::vector<std::pair<std::string, PluginIdentity>> plugins;  // by heuristic name
+};
+
+Registry& registry() {
+  static Registry r;
+  return r;
+}
+
+}  // namespace
+
+const std::vector<HeuristicInfo>& heuristics() { return registry().all; }
+
+void register_heuristic(HeuristicInfo info, PluginIdentity from) {
+  Registry& r = registry();
+  for (const auto& h : r.all)
+    if (h.name == info.name) {
+      const PluginIdentity* other = heuristic_plugin(h.name);
+      throw UsageError("heuristic '" + info.name + "' is already registered (" +
+                       (other ? "by plugin " + other->name + ", " + other->path : std::string("a built-in")) + ")");
+    }
+  r.plugins.emplace_back(info.name, std::move(from));
+  r.all.push_back(std::move(info));
+}
+
+const PluginIdentity* heuristic_plugin(std::string_view name) {
+  for (const auto& [heuristic, plugin] : registry().plugins)
+    if (heuristic == name) return &plugin;
+  return nullptr;
 }
 
 const HeuristicInfo& find_heuristic(std::string_view name) {

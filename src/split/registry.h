@@ -24,7 +24,25 @@ struct HeuristicInfo {
   std::function<std::unique_ptr<Splitter>(const ParamSet&, std::uint64_t seed)> make;
 };
 
+// Where a heuristic loaded at run time came from (split/plugin_loader.h): what joins the keys of
+// the jobs that use it and the commands that repeat them.
+struct PluginIdentity {
+  std::string name;     // the plugin's own name
+  std::string version;  // the plugin's own version
+  std::string hash;     // 16 hex digits of the file's content (common/hash.h)
+  std::string path;     // absolute, as loaded
+  // "NAME VERSION HASH": the part that decides results (the path does not).
+  std::string text() const { return name + " " + version + " " + hash; }
+};
+
+// The built-ins, then the heuristics plugins registered, in the order they were loaded.
 const std::vector<HeuristicInfo>& heuristics();
+// Adds a plugin's heuristic. Only at start-up, on one thread, before any heuristic is looked up
+// (references from heuristics() and find_heuristic() are invalidated). Throws UsageError for a name
+// already registered (a built-in's, a search's or another plugin's; the caller names the plugin).
+void register_heuristic(HeuristicInfo info, PluginIdentity from);
+// The plugin that registered `name`, or null for a built-in.
+const PluginIdentity* heuristic_plugin(std::string_view name);
 // Throws UsageError naming the known heuristics.
 const HeuristicInfo& find_heuristic(std::string_view name);
 // Throws UsageError for an unknown heuristic, an unknown parameter or a bad value.

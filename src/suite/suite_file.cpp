@@ -12,6 +12,7 @@
 
 #include "common/errors.h"
 #include "experiments/block_reader.h"
+#include "experiments/plugin_loader.h"
 #include "kinds/kinds.h"
 
 namespace bsp::suite {
@@ -102,7 +103,7 @@ std::string kind_keys() {
 }
 
 void check_top_keys(const experiments::BlockReader& r, const json& root) {
-  std::vector<std::string> known = {"name", "summary"};
+  std::vector<std::string> known = {"name", "summary", "plugins"};
   for (const auto* k : kinds()) known.emplace_back(k->suite_key);
   for (const auto& item : root.items())
     if (std::find(known.begin(), known.end(), item.key()) == known.end())
@@ -122,6 +123,12 @@ Suite parse(const experiments::BlockReader& r, const json& root) {
   Suite suite;
   suite.name = suite_name(r, r.required(root, "", "name"));
   if (const json* s = r.optional(root, "summary")) suite.summary = r.string(*s, "summary");
+  // Plugins first: the blocks may name their heuristics. A path is relative to the suite's folder.
+  if (const json* plugins = r.optional(root, "plugins"))
+    r.each(*plugins, "plugins", "leave \"plugins\" out", [&](const json& j, const std::string& path) {
+      const fs::path file = r.dir() / r.string(j, path);
+      suite.plugins.push_back(r.at(path, [&] { return experiments::load_plugin(file.string()); }).path);
+    });
   for (const experiments::Kind* kind : kinds()) {
     const std::string key(kind->suite_key);
     const json* blocks = r.optional(root, key.c_str());

@@ -11,6 +11,7 @@
 
 #include "common/hash.h"
 #include "common/revision.h"
+#include "experiments/plugin_loader.h"
 
 namespace bsp::sweep {
 
@@ -51,7 +52,7 @@ std::string host_name() {
 }  // namespace
 
 nlohmann::json environment_json(int threads) {
-  return {{"git_revision", git_revision()},
+  nlohmann::json env{{"git_revision", git_revision()},
           {"compiler", compiler()},
           {"build_type", BSPBENCH_BUILD_TYPE},
           {"flags", BSPBENCH_CXX_FLAGS},
@@ -60,6 +61,10 @@ nlohmann::json environment_json(int threads) {
           {"threads", threads},
           {"host", host_name()},
           {"date_utc", utc_now()}};
+  // The plugins loaded (--plugin, a suite's "plugins"), when any: what else made the results.
+  for (const PluginIdentity& p : experiments::loaded_plugins())
+    env["plugins"].push_back({{"name", p.name}, {"version", p.version}, {"hash", p.hash}, {"path", p.path}});
+  return env;
 }
 
 std::string executable_hash() {

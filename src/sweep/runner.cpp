@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "common/errors.h"
 #include "common/hash.h"
 #include "sweep/calibration.h"
 #include "sweep/environment.h"
@@ -45,8 +46,10 @@ void resume(const Journal& journal, Work& w) {
 
 void run_pending(Work& w, Journal& journal, double calibration, int threads, const experiments::RunContext& context,
                  Progress* progress) {
-  std::exception_ptr journal_error;
-  std::atomic<bool> stop{false};  // the journal failed: results could no longer be kept
+  // The journal failed (results could no longer be kept), or a plugin threw (its other jobs
+  // would too): the sweep stops, the journal keeping the runs done, and rethrows it.
+  std::exception_ptr fatal;
+  std::atomic<bool> stop{false};
   const auto count = static_cast<std::int64_t>(w.pending.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (std::int64_t i = 0; i < count; ++i) {
@@ -60,6 +63,11 @@ void run_pending(Work& w, Journal& journal, double calibration, int threads, con
     try {
       record = job.run(context);
       record["calibration_seconds"] = calibration;
+    } catch (const PluginError&) {
+#pragma omp critical(bspbench_sweep_journal)
+      if (!fatal) fatal = std::current_exception();
+      stop = true;
+      continue;
     } catch (const std::exception& e) {
       error = e.what();
     } catch (...) {
@@ -74,14 +82,14 @@ void run_pending(Work& w, Journal& journal, double calibration, int threads, con
           journal.append(record);
           w.runs.push_back(std::move(record));
         } catch (...) {
-          journal_error = std::current_exception();
+          if (!fatal) fatal = std::current_exception();
           stop = true;
         }
       }
       if (progress) progress->job_done(weight(job));
     }
   }
-  if (journal_error) std::rethrow_exception(journal_error);
+  if (fatal) std::rethrow_exception(fatal);
 }
 
 }  // namespace

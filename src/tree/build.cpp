@@ -497,12 +497,14 @@ Tree build_tree(std::span<const Polygon> input, Splitter& splitter, const BuildO
   std::vector<std::uint32_t> ids = load_input(input, draft, options.plane_eps_relative);
   if (options.incremental) {
     build_incremental(draft, std::move(ids), splitter, options);
+    splitter.check();
     Tree tree = freeze(std::move(draft));
     tree.stats.build_seconds = seconds_since(start);
     return tree;
   }
   const auto builders = Clock::now();
   build_recursive(draft, splitter, std::move(ids), options);
+  splitter.check();
   // The builders and the layout have billed their own time; the main thread's waits for tasks are
   // not work. What remains is loading and freezing.
   const double building = seconds_since(builders);
@@ -519,6 +521,7 @@ void build_subtree(TreeDraft& draft, Splitter& splitter, std::vector<std::uint32
   static const BuildOptions kPlain;
   RecursiveBuilder(draft, splitter, kPlain, std::move(cell_prefix), nullptr)
       .run(WorkItem{std::move(ids), kNull, true, depth, key});
+  splitter.check();
 }
 
 Tree build_incremental_tree(std::span<const Polygon> input, const BuildOptions& options) {

@@ -267,6 +267,7 @@ ExactTree build_exact_tree(std::span<const Polygon> input, Splitter& splitter, c
   out.exact.load_seconds = seconds_since(load);
 
   Built built = ExactBuilder(frags, splitter, options.shape, tree.tol, tree.bounds, stats, out.exact).run(std::move(ids));
+  splitter.check();
   freeze_exact(built, frags, out);
   out.exact.sides = frags.counters();
   stats.build_seconds = seconds_since(start);

@@ -52,6 +52,7 @@ std::string csg_key(const CsgSpec& s) {
   if (s.engine == "bspbench") {
     h.add_string(s.heuristic.label);
     h.add_string(s.heuristic.resolved.canonical());
+    add_plugin_identity(h, s.heuristic.name);
     h.add_string(kernel_name(s.kernel));
     h.add_u64(s.points);
   }

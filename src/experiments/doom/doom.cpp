@@ -104,7 +104,7 @@ std::string command(const DoomSpec& s) {
   const std::string head = "bspbench doom --iwad " + s.iwad + " --maps " + s.map;
   switch (s.builder.kind) {
     case DoomBuilder::Kind::Heuristic:
-      return head + " --heuristics " + cli_heuristic(s.builder) + " --seed " + std::to_string(s.seed) + " --views " +
+      return head + plugin_arguments(s.builder.name) + " --heuristics " + cli_heuristic(s.builder) + " --seed " + std::to_string(s.seed) + " --views " +
              std::to_string(s.views) + " --json";
     case DoomBuilder::Kind::External: return head + " --heuristics '' --builders " + s.builder.name + " --json";
     case DoomBuilder::Kind::Shipped: break;
@@ -124,6 +124,7 @@ std::string doom_key(const DoomSpec& s) {
   if (s.builder.kind == DoomBuilder::Kind::Heuristic) {
     h.add_string(s.builder.name);
     h.add_string(resolved_params(s.builder).canonical());
+    add_plugin_identity(h, s.builder.name);
     h.add_u64(s.seed);
     h.add_u64(s.views);
   }

@@ -135,6 +135,7 @@ std::string merge_key(const MergeSpec& s) {
   }
   h.add_string(s.heuristic.label);
   h.add_string(s.heuristic.resolved.canonical());
+  add_plugin_identity(h, s.heuristic.name);
   h.add_string(set_op_name(s.op));
   h.add_u64(s.seed);
   h.add_u64(s.points);
