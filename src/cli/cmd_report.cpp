@@ -1,20 +1,10 @@
-// bspbench report: render a report as an HTML page with plots, by running analysis/report.py with
-// Debian's Python (it has matplotlib; a pyenv python3 on PATH may not).
-//
-// The script is looked up in BSPBENCH_SOURCE_DIR/analysis (the source tree this binary was built
-// from, a compile definition), then in analysis/ next to the executable (for a copied or installed
-// binary). The interpreter is /usr/bin/python3 unless the BSPBENCH_PYTHON environment variable
-// names another one.
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstdlib>
-#include <cstring>
+// bspbench report: render a report as an HTML page with plots, by running analysis/report.py
+// (cli/analysis_script.h says with which Python).
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 
+#include "cli/analysis_script.h"
 #include "cli/commands.h"
 #include "common/errors.h"
 #include "gate/regress.h"
@@ -25,36 +15,6 @@ namespace bsp::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr const char* kDefaultPython = "/usr/bin/python3";
-
-fs::path find_script() {
-  const fs::path in_source = fs::path(BSPBENCH_SOURCE_DIR) / "analysis" / "report.py";
-  if (fs::exists(in_source)) return in_source;
-  std::error_code ec;
-  const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path() / "analysis" / "report.py";
-  if (!ec && fs::exists(beside)) return beside;
-  throw InputError("cannot find analysis/report.py (looked in " + in_source.string() + " and " + beside.string() + ")");
-}
-
-// Runs argv; returns its exit status (128 + signal when killed).
-int spawn(const std::vector<std::string>& argv) {
-  std::vector<char*> c_argv;
-  for (const auto& a : argv) c_argv.push_back(const_cast<char*>(a.c_str()));
-  c_argv.push_back(nullptr);
-  std::cout.flush();
-  const pid_t pid = ::fork();
-  if (pid < 0) throw InputError(std::string("cannot start ") + argv[0] + ": " + std::strerror(errno));
-  if (pid == 0) {
-    ::execv(c_argv[0], c_argv.data());
-    std::cerr << "bspbench report: cannot run " << argv[0] << ": " << std::strerror(errno) << "\n";
-    ::_exit(127);
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0)
-    if (errno != EINTR) throw InputError(std::string("lost ") + argv[0] + ": " + std::strerror(errno));
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
 
 // The gate's comparison of the two reports, for the page's "changes" section: written into the
 // output directory (temporary file, then rename) so it is kept beside the page it explains.
@@ -86,14 +46,13 @@ int run(Args& args) {
   if (format && *format != "csv" && *format != "markdown" && *format != "latex")
     throw UsageError("--format must be csv, markdown or latex, not '" + *format + "'");
   results::read_report(in);  // a bad report is reported here, in one line, not as a Python traceback
-  const char* python = std::getenv("BSPBENCH_PYTHON");
-  std::vector<std::string> argv = {python ? python : kDefaultPython, find_script().string(), "--in", in, "--out", out};
+  std::vector<std::string> argv = {"--in", in, "--out", out};
   if (baseline) {
     const std::string comparison = write_comparison(*baseline, in, out);
     argv.insert(argv.end(), {"--baseline", *baseline, "--comparison", comparison});
   }
   if (format) argv.insert(argv.end(), {"--format", *format});
-  const int status = spawn(argv);
+  const int status = run_analysis_script("report.py", argv);
   if (status == 0) std::cout << "report: wrote " << (fs::path(out) / "index.html").string() << "\n";
   return status == 0 ? 0 : status == 2 ? 2 : 1;
 }

@@ -6,9 +6,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "common/errors.h"
+#include "history/history.h"
 #include "results/record.h"
 #include "results/report.h"
 #include "sweep/runner.h"
@@ -41,6 +44,12 @@ void summarize(const nlohmann::json& report, const std::string& out) {
   }
 }
 
+void append_to_history(history::Database& db, const nlohmann::json& report) {
+  const history::Entry e = db.append(std::span(&report, 1)).front();
+  std::cout << "sweep: appended to " << db.path() << " as entry " << e.id << " (revision " << e.revision << ", machine "
+            << e.machine.fingerprint << ")\n";
+}
+
 int run(Args& args) {
   const std::string suite_name = args.required("--suite");
   sweep::SweepOptions options;
@@ -49,7 +58,13 @@ int run(Args& args) {
   const std::string out = args.option("--out").value_or("results/report.json");
   const auto journal_dir = args.option("--journal-dir");
   options.fresh = args.flag("--fresh");
+  const auto history_path = args.option("--history");
   args.finish();
+  if (history_path && options.shard)
+    throw UsageError("a shard's report is one part of a sweep: append the merged one (merge-reports --history)");
+  // Opened first: a database that is not one stops the sweep before it runs.
+  std::optional<history::Database> history;
+  if (history_path) history = history::Database::open(*history_path, true);
   if (const char* plant = std::getenv("BSPBENCH_PLANT_SLOWDOWN")) options.plant = experiments::parse_planted_slowdown(plant);
   const suite::Suite suite = suite::find_suite(suite_name);
   options.journal_dir = journal_dir.value_or((std::filesystem::path(out).parent_path() / "journal").string());
@@ -60,6 +75,7 @@ int run(Args& args) {
   const nlohmann::json report = sweep::run_sweep(suite, options);
   results::write_report(out, report);
   summarize(report, out);
+  if (history) append_to_history(*history, report);
   return 0;
 }
 
@@ -67,7 +83,7 @@ int run(Args& args) {
 
 Command sweep_command() {
   return {"sweep",
-          "--suite NAME|FILE.json [--threads N] [--shard i/N] [--out FILE] [--journal-dir DIR] [--fresh]",
+          "--suite NAME|FILE.json [--threads N] [--shard i/N] [--out FILE] [--journal-dir DIR] [--fresh] [--history FILE.sqlite]",
           "run a suite of builds (scenes x heuristics x seeds x sizes), resumable, and write its report", run,
           {{"--suite NAME|FILE.json",
             "a built-in suite: smoke, quick, default, merge, dynamic, occlusion, segments, doom or full "
@@ -77,7 +93,9 @@ Command sweep_command() {
            {"--shard i/N", "run only share i of N (0-based) of the suite's jobs; merge with merge-reports"},
            {"--out FILE", "the report (default results/report.json)"},
            {"--journal-dir DIR", "where finished jobs are journaled for resuming (default: journal/ beside --out)"},
-           {"--fresh", "discard the journal and run every job again"}}};
+           {"--fresh", "discard the journal and run every job again"},
+           {"--history FILE.sqlite", "append the report to this history database (created if missing; bspbench history "
+                                     "draws it); a sharded sweep appends with merge-reports instead"}}};
 }
 
 }  // namespace bsp::cli

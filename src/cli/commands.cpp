@@ -16,6 +16,7 @@ const std::vector<Command>& commands() {
       sweep_command(),
       merge_reports_command(),
       regress_command(),
+      history_command(),
       report_command(),
       order_command(),
       validate_command(),

@@ -47,5 +47,6 @@ Command occlude_command();
 Command doom_command();
 Command kernel_command();
 Command optimal_command();
+Command history_command();
 
 }  // namespace bsp::cli

@@ -227,6 +227,40 @@ void compare_runs(const nlohmann::json& baseline, const nlohmann::json& current,
 
 }  // namespace
 
+nlohmann::json pool_reports(std::span<const nlohmann::json> reports) {
+  if (reports.empty()) throw InputError("no reports to pool");
+  nlohmann::json pooled = reports.back();
+  const auto calibration = [](const nlohmann::json& run) { return run.value("calibration_seconds", 0.0); };
+  std::map<std::string, std::vector<const nlohmann::json*>> older;
+  for (std::size_t i = 0; i + 1 < reports.size(); ++i)
+    for (const auto& r : reports[i]["runs"]) older[r["key"].get<std::string>()].push_back(&r);
+  for (auto& run : pooled["runs"]) {
+    const auto it = older.find(run["key"].get<std::string>());
+    const std::string gated = gated_field(run);
+    if (it == older.end() || gated.empty() || !(calibration(run) > 0)) continue;
+    const auto ref_field = results::timing_of_role(section_of(run, "id"), experiments::TimingRole::ReferenceSamples);
+    const bool references = !ref_field.empty() && !reference_samples(run).empty();
+    auto& timings = run["timings"];
+    for (const nlohmann::json* old : it->second) {
+      const double scale = calibration(run) / calibration(*old);
+      if (!(scale > 0) || !std::isfinite(scale)) continue;
+      const std::vector<double> refs = reference_samples(*old);
+      if (references && refs.empty()) continue;  // its samples could not be divided like the others
+      const auto& samples = section_of(*old, "timings").value(gated, nlohmann::json::array());
+      if (!std::all_of(samples.begin(), samples.end(), [](const nlohmann::json& x) { return x.is_number(); })) continue;
+      for (const auto& x : samples) timings[gated].push_back(x.get<double>() * scale);
+      if (references)
+        for (double x : refs) timings[std::string(ref_field)].push_back(x * scale);
+    }
+  }
+  return pooled;
+}
+
+RunTiming run_timing(const nlohmann::json& run) {
+  const bool by_reference = !reference_samples(run).empty();
+  return {group_label(section_of(run, "id")), gated_field(run).empty() ? std::vector<double>{} : normalized_samples(run, by_reference)};
+}
+
 bool RegressResult::failed() const {
   return std::any_of(changes.begin(), changes.end(), [](const Change& c) { return c.regression; });
 }

@@ -37,6 +37,7 @@
 // product.
 #include <cstdint>
 #include <iosfwd>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,21 @@ struct RegressResult {
 // matched by command and two runs of one report share a command and views.
 RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::json& current,
                               const RegressOptions& options);
+// The baseline that stands for several reports of one suite on one machine, oldest first (regress
+// --history): the newest report, each of its runs' gated timing samples and their references pooled
+// from every report holding the run. Each report's samples and references are scaled by the newest
+// report's calibration over its own, so a comparison by calibration stays on one scale and one by
+// reference is unchanged. Throws InputError for no reports.
+nlohmann::json pool_reports(std::span<const nlohmann::json> reports);
+
+// A run's timing group and gated samples, each divided by its batch's reference (by the calibration
+// when the run has no references): what the history's timing series are made of.
+struct RunTiming {
+  std::string group;  // as the gate groups runs: scene heuristic shape
+  std::vector<double> samples;
+};
+RunTiming run_timing(const nlohmann::json& run);
+
 // Every change and timing test as JSON, for the report's comparison section.
 nlohmann::json to_json(const RegressResult& result);
 // Three significant digits: how the gate's tables show numbers.

@@ -1,0 +1,212 @@
+#!/usr/bin/python3
+"""Draw a bspbench history (results over time) as an HTML page with plots.
+
+    /usr/bin/python3 analysis/history.py --data DIR/history.json --out DIR
+
+(`bspbench history --db FILE.sqlite --out DIR` writes history.json from the database and runs
+this.) Per suite: the entries, oldest first, with the regression gate's decision on each (judged
+against the last k entries of its suite and machine); then, per scene, a plot per timing group
+(scene x heuristic x shape, as the gate groups runs): its gated build time, each run's samples over
+their in-run reference, as a ratio to the group's first entry on the same machine (solid), and every
+metric of the group that ever changed, as a ratio to its first value there (dashed). An entry where the gate found the
+group slower is marked with a red triangle, an entry the gate failed is shaded, and a change of
+machine breaks the lines at a dotted rule: timings of two machines are not comparable. The
+tables under each suite list the metrics that changed. Layout of history.json: docs/history.md.
+
+Needs matplotlib (Debian: python3-matplotlib). Exit status: 0 written, 2 bad input.
+"""
+import argparse
+import html
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display; before pyplot
+import matplotlib.pyplot as plt  # noqa: E402
+
+DPI = 100
+# Groups per figure (one figure per scene, split when a scene has more).
+PER_FIGURE = 12
+COLUMNS = 4
+
+
+def fail(message):
+    print(f"history.py: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
+def scene_of(label):
+    return label.split(" ", 1)[0]
+
+
+def series(points, entries):
+    """Values by entry index (None where absent), broken (NaN) where the machine changes."""
+    values = [None] * len(entries)
+    for p in points:
+        values[p["i"]] = p["v"]
+    return values
+
+
+def ratio_to_first(values, cuts):
+    """Each value over the first of its machine's stretch (cuts: breaks()): times of two machines
+    are not compared, not even through a common first point."""
+    out = list(values)
+    bounds = [0] + cuts + [len(values)]
+    for a, b in zip(bounds, bounds[1:]):
+        first = next((v for v in values[a:b] if v), None)
+        for i in range(a, b):
+            out[i] = values[i] / first if (values[i] is not None and first) else None
+    return out
+
+
+def breaks(entries):
+    """Indices i where entry i runs on another machine than entry i - 1."""
+    return [i for i in range(1, len(entries)) if entries[i]["machine"] != entries[i - 1]["machine"]]
+
+
+def segments(values, cuts):
+    """(xs, ys) runs of the series between machine changes, so no line joins two machines."""
+    bounds = [0] + cuts + [len(values)]
+    for a, b in zip(bounds, bounds[1:]):
+        xs = [i for i in range(a, b) if values[i] is not None]
+        if xs:
+            yield xs, [values[i] for i in xs]
+
+
+def changed_metrics(group, entries):
+    out = {}
+    for name, points in group["metrics"].items():
+        vals = [v for v in series(points, entries) if v is not None]
+        if vals and any(not math.isclose(v, vals[0], rel_tol=1e-9, abs_tol=1e-12) for v in vals):
+            out[name] = series(points, entries)
+    return out
+
+
+def draw_scene(labels, groups, entries, path):
+    rows = math.ceil(len(labels) / COLUMNS)
+    fig, axes = plt.subplots(rows, min(COLUMNS, len(labels)), figsize=(4.2 * min(COLUMNS, len(labels)), 2.9 * rows),
+                             squeeze=False)
+    cuts = breaks(entries)
+    ticks = [e["revision"][:9] for e in entries]
+    for ax, label in zip(axes.flat, labels):
+        g = groups[label]
+        timing = ratio_to_first(series(g["timing"], entries), cuts)
+        for xs, ys in segments(timing, cuts):
+            ax.plot(xs, ys, "-o", color="tab:blue", markersize=3, linewidth=1.2, label="build time")
+        for k, (name, values) in enumerate(sorted(changed_metrics(g, entries).items())):
+            for xs, ys in segments(ratio_to_first(values, cuts), cuts):
+                ax.plot(xs, ys, "--", linewidth=1, color=plt.cm.tab10((k + 1) % 10), label=name)
+        for i, e in enumerate(entries):
+            gate = e["gate"]
+            if gate.get("judged") and gate.get("failed"):
+                ax.axvspan(i - 0.4, i + 0.4, color="red", alpha=0.08)
+            if gate.get("judged") and label in gate.get("slower", []) and timing[i] is not None:
+                ax.plot([i], [timing[i]], "v", color="red", markersize=8)
+        for c in cuts:
+            ax.axvline(c - 0.5, color="gray", linestyle=":", linewidth=1)
+        ax.set_title(label, fontsize=8)
+        ax.set_xticks(range(len(entries)))
+        ax.set_xticklabels(ticks, rotation=60, ha="right", fontsize=6)
+        ax.tick_params(axis="y", labelsize=6)
+        ax.set_ylabel("ratio to first", fontsize=6)
+        handles, names = ax.get_legend_handles_labels()
+        unique = dict(zip(names, handles))
+        ax.legend(unique.values(), unique.keys(), fontsize=5, loc="best")
+    for ax in list(axes.flat)[len(labels):]:
+        ax.axis("off")
+    fig.tight_layout()
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+
+
+def entries_table(suite):
+    rows = []
+    for n, e in enumerate(suite["entries"]):
+        m = suite["machines"][e["machine"]]
+        gate = e["gate"]
+        if not gate.get("judged"):
+            verdict = "not judged (no earlier entry on this machine)"
+        elif gate["failed"]:
+            verdict = (f"<b>FAILED</b>: {gate['regressions']} regressions"
+                       + (f", slower: {html.escape(', '.join(gate['slower']))}" if gate["slower"] else ""))
+        else:
+            verdict = f"passed (against entries {', '.join(map(str, gate['against']))})"
+        rows.append(f"<tr><td>{n}</td><td>{e['id']}</td><td>{html.escape(e['revision'])}</td>"
+                    f"<td>{html.escape(e['date_utc'])}</td><td>{html.escape(m['cpu_model'])}, {m['hardware_threads']} threads "
+                    f"({e['machine']})</td><td>{e['calibration_seconds']:.4g}</td><td>{e['runs']}</td>"
+                    f"<td>{e['failures']}</td><td>{verdict}</td></tr>")
+    return ("<table><tr><th>#</th><th>entry</th><th>revision</th><th>date (UTC)</th><th>machine</th>"
+            "<th>calibration s</th><th>runs</th><th>failed jobs</th><th>gate</th></tr>" + "".join(rows) + "</table>")
+
+
+def changes_table(suite):
+    rows = []
+    for label, g in sorted(suite["groups"].items()):
+        for name, values in sorted(changed_metrics(g, suite["entries"]).items()):
+            present = [(i, v) for i, v in enumerate(values) if v is not None]
+            rows.append(f"<tr><td>{html.escape(label)}</td><td>{html.escape(name)}</td>"
+                        f"<td>{present[0][1]:.6g} (#{present[0][0]})</td><td>{present[-1][1]:.6g} (#{present[-1][0]})</td></tr>")
+    if not rows:
+        return "<p>No metric of any group changed over these entries.</p>"
+    return ("<table><tr><th>group</th><th>metric (sum over the group's runs)</th><th>first</th><th>last</th></tr>"
+            + "".join(rows) + "</table>")
+
+
+def render_suite(suite, out_dir, index):
+    entries = suite["entries"]
+    parts = [f"<h2 id='{html.escape(suite['name'])}'>Suite {html.escape(suite['name'])}</h2>",
+             f"<p>{len(entries)} entries, {len(suite['groups'])} timing groups, "
+             f"{len(suite['machines'])} machine(s).</p>", entries_table(suite),
+             "<h3>Metrics that changed</h3>", changes_table(suite), "<h3>Every group over the entries</h3>"]
+    by_scene = {}
+    for label in sorted(suite["groups"]):
+        by_scene.setdefault(scene_of(label), []).append(label)
+    for scene, labels in sorted(by_scene.items()):
+        for part in range(0, len(labels), PER_FIGURE):
+            png = f"history-{index}-{len(os.listdir(out_dir))}.png"
+            draw_scene(labels[part:part + PER_FIGURE], suite["groups"], entries, os.path.join(out_dir, png))
+            parts.append(f"<h4>{html.escape(scene)}</h4><img src='{png}' alt='history of {html.escape(scene)}'>")
+    return "\n".join(parts)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--data", required=True)
+    parser.add_argument("--out", required=True)
+    args = parser.parse_args()
+    try:
+        with open(args.data, encoding="utf-8") as f:
+            data = json.load(f)
+    except (OSError, ValueError) as e:
+        fail(f"{args.data}: {e}")
+    if not isinstance(data, dict) or "suites" not in data:
+        fail(f"{args.data}: not the data of bspbench history")
+    os.makedirs(args.out, exist_ok=True)
+    for old in os.listdir(args.out):
+        if old.startswith("history-") and old.endswith(".png"):
+            os.remove(os.path.join(args.out, old))
+    body = "\n".join(render_suite(s, args.out, i) for i, s in enumerate(data["suites"]))
+    page = f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>bspbench history</title>
+<style>body{{font-family:sans-serif;margin:2em;max-width:1800px}} table{{border-collapse:collapse;font-size:12px;margin:1em 0}}
+td,th{{border:1px solid #ccc;padding:2px 6px;text-align:left}} img{{max-width:100%}}</style></head><body>
+<h1>bspbench history</h1>
+<p>From {html.escape(data['database'])}. The gate judges each entry against the last {data['last']} entries of its
+suite and machine before it (bspbench regress --history): results as the newest, build times pooled.
+Build times are each run's gated samples over their in-run reference, a geometric mean per group, drawn as a
+ratio to the group's first entry on the same machine; a dotted rule is a change of machine, across which no line is
+drawn.</p>
+{body}
+</body></html>
+"""
+    tmp = os.path.join(args.out, "index.html.tmp")
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write(page)
+    os.replace(tmp, os.path.join(args.out, "index.html"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,80 @@
+// bspbench history: results over time (history/history.h). Appends reports to a history database
+// and draws its page: every gated timing group and metric over the database's entries, the gate's
+// decision on each entry marked, a change of machine shown as a break (analysis/history.py).
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "cli/analysis_script.h"
+#include "cli/commands.h"
+#include "common/errors.h"
+#include "history/history.h"
+#include "history/page_data.h"
+#include "results/report.h"
+
+namespace bsp::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr long long kMaxLast = 100;
+
+// history.json beside the page (a temporary file renamed into place), for the script and for
+// readers who want the numbers.
+std::string write_data(const nlohmann::json& data, const std::string& out) {
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  if (ec) throw InputError(out + ": cannot create the output directory (" + ec.message() + ")");
+  const fs::path path = fs::path(out) / "history.json", tmp = fs::path(out) / "history.json.tmp";
+  std::ofstream f(tmp);
+  f << data.dump(1) << "\n";
+  f.close();
+  if (!f) throw InputError(tmp.string() + ": cannot write");
+  fs::rename(tmp, path, ec);
+  if (ec) throw InputError(path.string() + ": cannot write (" + ec.message() + ")");
+  return path.string();
+}
+
+int run(Args& args) {
+  const std::string db_path = args.required("--db");
+  const std::vector<std::string> appends = args.options("--append");
+  const auto out = args.option("--out");
+  history::PageSettings settings;
+  settings.suite = args.option("--suite");
+  settings.last = static_cast<std::size_t>(args.integer("--last", 1, kMaxLast).value_or(static_cast<long long>(settings.last)));
+  args.finish();
+  if (appends.empty() && !out) throw UsageError("give --append REPORT.json, --out DIR, or both");
+  // Every report is read, and all appended in one transaction: a bad one appends none.
+  std::vector<nlohmann::json> reports;
+  for (const auto& a : appends) reports.push_back(results::read_report(a));
+  history::Database db = history::Database::open(db_path, !appends.empty());
+  const std::vector<history::Entry> entries = db.append(reports);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const history::Entry& e = entries[i];
+    std::cout << "history: appended " << appends[i] << " to " << db_path << " as entry " << e.id << " (" << e.suite << ", "
+              << e.revision << ", machine " << e.machine.fingerprint << ")\n";
+  }
+  if (!out) return 0;
+  const std::string data = write_data(history::page_data(db, settings), *out);
+  const int status = run_analysis_script("history.py", {"--data", data, "--out", *out});
+  if (status == 0) std::cout << "history: wrote " << (fs::path(*out) / "index.html").string() << "\n";
+  return status == 0 ? 0 : status == 2 ? 2 : 1;
+}
+
+}  // namespace
+
+Command history_command() {
+  return {"history", "--db FILE.sqlite [--append REPORT.json]... [--out DIR] [--suite NAME] [--last K]",
+          "keep reports in a history database and draw every gated metric and timing over revisions as DIR/index.html",
+          run,
+          {{"--db FILE.sqlite", "the history database (created by the first --append; sweep --history appends too)"},
+           {"--append REPORT.json", "append a report of sweep or merge-reports (repeatable; all are read before any is appended)"},
+           {"--out DIR", "draw the page: index.html, its plots and history.json (the numbers drawn)"},
+           {"--suite NAME", "only this suite's entries (default: every suite, a section each)"},
+           {"--last K", "the gate judges each entry against the last K entries of its suite and machine before it, "
+                        "as regress --history does (default 5)"}}};
+}
+
+}  // namespace bsp::cli
