@@ -21,6 +21,7 @@ import json
 import math
 import os
 import sys
+import time
 
 import matplotlib
 
@@ -155,20 +156,49 @@ def changes_table(suite):
             + "".join(rows) + "</table>")
 
 
-def render_suite(suite, out_dir, index):
+class Progress:
+    """Figures drawn, on stderr: on a terminal one line rewritten in place with the time left, else
+    a line at most every PLAIN_INTERVAL seconds and a last one (as bspbench's own progress lines)."""
+    PLAIN_INTERVAL = 10
+
+    def __init__(self, total):
+        self.total, self.done = total, 0
+        self.start = self.last = time.monotonic()
+        self.terminal = sys.stderr.isatty()
+
+    def step(self):
+        self.done += 1
+        now = time.monotonic()
+        if self.terminal or now - self.last >= self.PLAIN_INTERVAL or self.done == self.total:
+            self.last = now
+            elapsed = now - self.start
+            left = elapsed * (self.total - self.done) / self.done
+            line = f"history: {self.done}/{self.total} figures, elapsed {elapsed:.0f} s, about {left:.0f} s left"
+            end = "\n" if self.done == self.total or not self.terminal else ""
+            sys.stderr.write(("\r\033[K" if self.terminal else "") + line + end)
+            sys.stderr.flush()
+
+
+def figures(suite):
+    """(scene, labels) per figure: one per scene, split past PER_FIGURE groups."""
+    by_scene = {}
+    for label in sorted(suite["groups"]):
+        by_scene.setdefault(scene_of(label), []).append(label)
+    return [(scene, labels[part:part + PER_FIGURE]) for scene, labels in sorted(by_scene.items())
+            for part in range(0, len(labels), PER_FIGURE)]
+
+
+def render_suite(suite, out_dir, index, progress):
     entries = suite["entries"]
     parts = [f"<h2 id='{html.escape(suite['name'])}'>Suite {html.escape(suite['name'])}</h2>",
              f"<p>{len(entries)} entries, {len(suite['groups'])} timing groups, "
              f"{len(suite['machines'])} machine(s).</p>", entries_table(suite),
              "<h3>Metrics that changed</h3>", changes_table(suite), "<h3>Every group over the entries</h3>"]
-    by_scene = {}
-    for label in sorted(suite["groups"]):
-        by_scene.setdefault(scene_of(label), []).append(label)
-    for scene, labels in sorted(by_scene.items()):
-        for part in range(0, len(labels), PER_FIGURE):
-            png = f"history-{index}-{len(os.listdir(out_dir))}.png"
-            draw_scene(labels[part:part + PER_FIGURE], suite["groups"], entries, os.path.join(out_dir, png))
-            parts.append(f"<h4>{html.escape(scene)}</h4><img src='{png}' alt='history of {html.escape(scene)}'>")
+    for k, (scene, labels) in enumerate(figures(suite)):
+        png = f"history-{index}-{k}.png"
+        draw_scene(labels, suite["groups"], entries, os.path.join(out_dir, png))
+        parts.append(f"<h4>{html.escape(scene)}</h4><img src='{png}' alt='history of {html.escape(scene)}'>")
+        progress.step()
     return "\n".join(parts)
 
 
@@ -188,7 +218,8 @@ def main():
     for old in os.listdir(args.out):
         if old.startswith("history-") and old.endswith(".png"):
             os.remove(os.path.join(args.out, old))
-    body = "\n".join(render_suite(s, args.out, i) for i, s in enumerate(data["suites"]))
+    progress = Progress(sum(len(figures(s)) for s in data["suites"]))
+    body = "\n".join(render_suite(s, args.out, i, progress) for i, s in enumerate(data["suites"]))
     page = f"""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8"><title>bspbench history</title>
 <style>body{{font-family:sans-serif;margin:2em;max-width:1800px}} table{{border-collapse:collapse;font-size:12px;margin:1em 0}}

@@ -300,7 +300,7 @@ TEST_F(Cli, IncrementalRefusesAHeuristicAndIsLabelledIncremental) {
 // names, exit 0, nothing on stderr.
 TEST_F(Cli, EveryCommandsHelpExplainsEveryOptionOfItsUsageLine) {
   const std::vector<std::string> commands = {"build",        "compare", "heuristics", "scenes", "generate", "sweep",
-                                             "merge-reports", "regress", "report",     "order",  "validate"};
+                                             "merge-reports", "regress", "report",     "order",  "validate", "history"};
   const std::regex option("--[a-z][a-z-]*");
   for (const auto& name : commands) {
     for (const char* flag : {"--help", "-h"}) {

@@ -6,6 +6,8 @@
 // With --kernel exact each tree is built in the exact kernel, measured on its view (vertices from
 // planes) and its orders checked exactly (validate/exact_order_check.h); the ray-shooting check,
 // a float traversal, is not run then (its counts are 0). Exit code 1 when any check fails.
+#include <unistd.h>
+
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -21,6 +23,7 @@
 #include "cli/metrics_args.h"
 #include "cli/run_args.h"
 #include "common/errors.h"
+#include "common/progress.h"
 #include "experiments/draw/draw.h"
 #include "io/mesh_reader.h"
 #include "metrics/statistics.h"
@@ -242,13 +245,19 @@ int run(Args& args) {
   nlohmann::json out = header(spec, scenes);
   out["heuristics"] = nlohmann::json::array();
   std::uint64_t failures = 0;
+  // Progress on stderr, a run of each heuristic and seed weighing alike.
+  const std::uint64_t total = spec.heuristics.size() * spec.seeds;
+  Progress progress(std::clog, ::isatty(STDERR_FILENO) != 0, "compare", "runs", total, static_cast<double>(total));
   for (const auto& h : spec.heuristics) {
     std::vector<Run> runs;
-    for (std::uint64_t k = 0; k < spec.seeds; ++k)
+    for (std::uint64_t k = 0; k < spec.seeds; ++k) {
       runs.push_back(run_once(spec, scenes[seeded_scene(spec) ? k : 0], h, spec.seed + k));
+      progress.job_done(1.0);
+    }
     out["heuristics"].push_back(summarize_runs(h, runs));
     failures += out["heuristics"].back()["validation"]["failures"].get<std::uint64_t>();
   }
+  progress.finish();
   out["validation_failures"] = failures;
   if (json)
     std::cout << out.dump() << "\n";

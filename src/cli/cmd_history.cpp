@@ -1,6 +1,8 @@
 // bspbench history: results over time (history/history.h). Appends reports to a history database
 // and draws its page: every gated timing group and metric over the database's entries, the gate's
 // decision on each entry marked, a change of machine shown as a break (analysis/history.py).
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -9,6 +11,7 @@
 #include "cli/analysis_script.h"
 #include "cli/commands.h"
 #include "common/errors.h"
+#include "common/progress.h"
 #include "history/history.h"
 #include "history/page_data.h"
 #include "results/report.h"
@@ -57,7 +60,15 @@ int run(Args& args) {
               << e.revision << ", machine " << e.machine.fingerprint << ")\n";
   }
   if (!out) return 0;
-  const std::string data = write_data(history::page_data(db, settings), *out);
+  // Progress on stderr: reading and judging the entries, each weighing as its runs; the drawing
+  // (analysis/history.py) shows its own.
+  std::uint64_t runs = 0, count = 0;
+  for (const history::Entry& e : db.entries(settings.suite)) runs += e.runs, ++count;
+  Progress progress(std::clog, ::isatty(STDERR_FILENO) != 0, "history", "entries", count, static_cast<double>(runs));
+  settings.on_entry = [&](std::uint64_t entry_runs) { progress.job_done(static_cast<double>(entry_runs)); };
+  const nlohmann::json data_json = history::page_data(db, settings);
+  progress.finish();
+  const std::string data = write_data(data_json, *out);
   const int status = run_analysis_script("history.py", {"--data", data, "--out", *out});
   if (status == 0) std::cout << "history: wrote " << (fs::path(*out) / "index.html").string() << "\n";
   return status == 0 ? 0 : status == 2 ? 2 : 1;

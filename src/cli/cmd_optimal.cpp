@@ -1,18 +1,23 @@
 // bspbench optimal: the optimal autopartition of a small scene for one objective and tree shape
 // (search/optimal.h), its tree checked like any other, and every heuristic's gap to it
 // (experiments/optimal/optimal.h). Exit code 1 when the certificate fails a check or its measured
-// value differs from the solver's.
+// value differs from the solver's. The search's passes show as progress on stderr, the time left
+// being at most the --seconds budget's rest.
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "cli/run_args.h"
 #include "common/errors.h"
+#include "common/progress.h"
 #include "experiments/block_reader.h"
 #include "experiments/optimal/optimal.h"
 #include "search/optimal.h"
@@ -64,7 +69,18 @@ int run(Args& args) {
   args.finish();
   settings.seed = seed;
   settings.heuristics = experiments::choices_or_all(labels);
+  // Progress on stderr: the search's passes against its time budget, with its bounds.
+  Progress progress(std::clog, ::isatty(STDERR_FILENO) != 0, "optimal", "passes", Progress::kUnknownTotal,
+                    settings.solver.seconds);
+  double last_seconds = 0;
+  settings.solver.on_pass = [&](const OptimalProgress& p) {
+    char detail[128];
+    std::snprintf(detail, sizeof detail, "bounds [%.6g, %.6g], %llu states", p.lower, p.upper,
+                  static_cast<unsigned long long>(p.states));
+    progress.job_done(p.seconds - std::exchange(last_seconds, p.seconds), detail);
+  };
   const experiments::GapComparison c = experiments::compare_with_optimum(scene.polygons, settings);
+  progress.finish();
   nlohmann::json out;
   out["scene"] = scene_json(scene);
   out["seed"] = seed;

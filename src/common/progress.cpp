@@ -24,9 +24,10 @@ Progress::Progress(std::ostream& out, bool terminal, std::string label, std::str
       total_weight_(total_weight),
       start_(std::chrono::steady_clock::now()), last_print_(start_) {}
 
-void Progress::job_done(double weight) {
+void Progress::job_done(double weight, std::string_view detail) {
   ++done_;
   done_weight_ += weight;
+  detail_ = detail;
   if (terminal_ || std::chrono::steady_clock::now() - last_print_ >= kPlainInterval) print(false);
 }
 
@@ -37,11 +38,16 @@ void Progress::print(bool final_line) {
   const double elapsed = std::chrono::duration<double>(last_print_ - start_).count();
   const double rate = elapsed > 0 ? static_cast<double>(done_) / elapsed : 0.0;
   const double fraction = total_weight_ > 0 ? done_weight_ / total_weight_ : 1.0;
-  std::string line = label_ + ": " + std::to_string(done_) + "/" + std::to_string(total_) + " " + unit_;
+  const bool known = total_ != kUnknownTotal;
+  std::string line = label_ + ": " + std::to_string(done_);
+  if (known) line.append("/").append(std::to_string(total_));
+  line.append(" ").append(unit_);
   char buf[96];
   std::snprintf(buf, sizeof buf, ", %.2f %s/s, elapsed %s", rate, unit_.c_str(), clock_text(elapsed).c_str());
   line += buf;
-  if (!final_line && fraction > 0) line += ", about " + clock_text(elapsed * (1 - fraction) / fraction) + " left";
+  if (!final_line && fraction > 0 && fraction < 1)
+    line += (known ? ", about " : ", at most ") + clock_text(elapsed * (1 - fraction) / fraction) + " left";
+  if (!detail_.empty()) line += ", " + detail_;
   if (terminal_) out_ << "\r\033[K" << line << (final_line ? "\n" : "") << std::flush;
   else out_ << line << "\n" << std::flush;
 }

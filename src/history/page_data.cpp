@@ -53,7 +53,8 @@ nlohmann::json decision(const std::deque<nlohmann::json>& earlier, const nlohman
           {"slower", slower}};
 }
 
-nlohmann::json suite_data(const Database& db, const std::string& suite, std::size_t last) {
+nlohmann::json suite_data(const Database& db, const std::string& suite, const PageSettings& settings) {
+  const std::size_t last = settings.last;
   const std::vector<Entry> entries = db.entries(suite);
   nlohmann::json out{{"name", suite}, {"entries", nlohmann::json::array()}, {"machines", nlohmann::json::object()}};
   // label -> {timing: [{i, v}], metrics: {name: [{i, v}]}}, i the entry's index: a group absent
@@ -82,6 +83,7 @@ nlohmann::json suite_data(const Database& db, const std::string& suite, std::siz
     earlier.push_back(std::move(report));
     ids.push_back(e.id);
     if (earlier.size() > last) earlier.pop_front(), ids.pop_front();
+    if (settings.on_entry) settings.on_entry(e.runs);
   }
   out["groups"] = groups;
   return out;
@@ -95,7 +97,7 @@ nlohmann::json page_data(const Database& db, const PageSettings& settings) {
   if (suites.empty())
     throw InputError(db.path() + ": no entries" + (settings.suite ? " of suite " + *settings.suite : std::string()));
   nlohmann::json out{{"database", db.path()}, {"last", settings.last}, {"suites", nlohmann::json::array()}};
-  for (const std::string& s : suites) out["suites"].push_back(suite_data(db, s, settings.last));
+  for (const std::string& s : suites) out["suites"].push_back(suite_data(db, s, settings));
   return out;
 }
 

@@ -6,6 +6,8 @@
 // in-run reference, geometric mean over the group's runs) and the sum over its runs of every
 // numeric metric. The layout: docs/history.md.
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -18,6 +20,9 @@ namespace bsp::history {
 struct PageSettings {
   std::size_t last = 5;  // k: how many earlier entries of the same suite and machine judge an entry
   std::optional<std::string> suite;  // only this suite
+  // Called after each entry is read and judged (done of total, every suite's entries counted), when
+  // set: the CLI's progress line. An entry's weight is its runs.
+  std::function<void(std::uint64_t runs)> on_entry;
 };
 
 // Throws InputError when the database holds no entry (of the suite).

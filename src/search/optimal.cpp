@@ -159,9 +159,10 @@ class Solver {
   // (iterative deepening [Korf1985] on the bound), so a budget that runs out leaves a useful interval.
   void deepen(std::uint32_t s) {
     expand(s);
-    while (!known(s) && !out_of_budget()) {
+    for (std::uint64_t pass = 1; !known(s) && !out_of_budget(); ++pass) {
       solve(s, next_target(states_[s]));
       if (!budget_hit_) descend(s, true);
+      if (s_.on_pass) s_.on_pass({pass, states_[s].lb, states_[s].ub, states_.size(), elapsed()});
     }
   }
   // Fragments are whole numbers, so their target is the next one: a fractional target would leave

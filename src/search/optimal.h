@@ -41,6 +41,7 @@
 // fragments stay in the node, or in the leafy shape can no longer part the set), so the depth is
 // at most the input's distinct planes, which solve_optimal bounds by OptimalSettings::max_planes.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -55,6 +56,15 @@ enum class OptimalObjective : std::uint8_t { Fragments, EPoint, ELine };
 const char* objective_name(OptimalObjective o);
 std::optional<OptimalObjective> objective_named(std::string_view name);
 
+// Where a search stands after one of its passes (iterative deepening on the bound): what a progress
+// line shows.
+struct OptimalProgress {
+  std::uint64_t passes = 0;
+  double lower = 0, upper = 0;  // the root's bounds so far
+  std::uint64_t states = 0;
+  double seconds = 0;  // wall time since the search began
+};
+
 struct OptimalSettings {
   OptimalObjective objective = OptimalObjective::Fragments;
   Shape shape = Shape::Strict;
@@ -67,6 +77,8 @@ struct OptimalSettings {
   // Inputs with more distinct planes are refused (UsageError): far beyond what the search can
   // close, and the bound on its recursion depth.
   std::uint32_t max_planes = 256;
+  // Called after each pass from the solving thread, when set (the CLI's progress line).
+  std::function<void(const OptimalProgress&)> on_pass;
 };
 
 // What the search did. States and expansions measure the work; a solved instance of n fragments
