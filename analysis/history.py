@@ -7,10 +7,10 @@
 this.) Per suite: the entries, oldest first, with the regression gate's decision on each (judged
 against the last k entries of its suite and machine); then, per scene, a plot per timing group
 (scene x heuristic x shape, as the gate groups runs): its gated build time, each run's samples over
-their in-run reference, as a ratio to the group's first entry on the same machine (solid), and every
-metric of the group that ever changed, as a ratio to its first value there (dashed). An entry where the gate found the
-group slower is marked with a red triangle, an entry the gate failed is shaded, and a change of
-machine breaks the lines at a dotted rule: timings of two machines are not comparable. The
+their in-run reference, a line per machine, each as a ratio to that machine's first entry (solid),
+and every metric of the group that ever changed, as a ratio to its first value (dashed). An entry
+where the gate found the group slower is marked with a red triangle, an entry the gate failed is
+shaded, and a dotted rule marks each change of machine: timings of two machines are not compared. The
 tables under each suite list the metrics that changed. Layout of history.json: docs/history.md.
 
 Needs matplotlib (Debian: python3-matplotlib). Exit status: 0 written, 2 bad input.
@@ -44,21 +44,28 @@ def scene_of(label):
 
 
 def series(points, entries):
-    """Values by entry index (None where absent), broken (NaN) where the machine changes."""
+    """Values by entry index, None where the group has none."""
     values = [None] * len(entries)
     for p in points:
         values[p["i"]] = p["v"]
     return values
 
 
-def ratio_to_first(values, cuts):
-    """Each value over the first of its machine's stretch (cuts: breaks()): times of two machines
-    are not compared, not even through a common first point."""
-    out = list(values)
-    bounds = [0] + cuts + [len(values)]
-    for a, b in zip(bounds, bounds[1:]):
-        first = next((v for v in values[a:b] if v), None)
-        for i in range(a, b):
+def by_machine(entries):
+    """machine -> the indices of its entries, in order."""
+    out = {}
+    for i, e in enumerate(entries):
+        out.setdefault(e["machine"], []).append(i)
+    return out
+
+
+def ratio_to_first(values, entries):
+    """Each value over the first of its own machine's: times of two machines are never compared,
+    not even through a common first point."""
+    out = [None] * len(values)
+    for indices in by_machine(entries).values():
+        first = next((values[i] for i in indices if values[i]), None)
+        for i in indices:
             out[i] = values[i] / first if (values[i] is not None and first) else None
     return out
 
@@ -68,13 +75,12 @@ def breaks(entries):
     return [i for i in range(1, len(entries)) if entries[i]["machine"] != entries[i - 1]["machine"]]
 
 
-def segments(values, cuts):
-    """(xs, ys) runs of the series between machine changes, so no line joins two machines."""
-    bounds = [0] + cuts + [len(values)]
-    for a, b in zip(bounds, bounds[1:]):
-        xs = [i for i in range(a, b) if values[i] is not None]
+def per_machine(values, entries):
+    """(machine number, xs, ys): a machine's points of the series, so no line joins two machines."""
+    for k, indices in enumerate(by_machine(entries).values()):
+        xs = [i for i in indices if values[i] is not None]
         if xs:
-            yield xs, [values[i] for i in xs]
+            yield k, xs, [values[i] for i in xs]
 
 
 def changed_metrics(group, entries):
@@ -94,12 +100,17 @@ def draw_scene(labels, groups, entries, path):
     ticks = [e["revision"][:9] for e in entries]
     for ax, label in zip(axes.flat, labels):
         g = groups[label]
-        timing = ratio_to_first(series(g["timing"], entries), cuts)
-        for xs, ys in segments(timing, cuts):
-            ax.plot(xs, ys, "-o", color="tab:blue", markersize=3, linewidth=1.2, label="build time")
+        timing = ratio_to_first(series(g["timing"], entries), entries)
+        machines = len(by_machine(entries))
+        for m, xs, ys in per_machine(timing, entries):
+            ax.plot(xs, ys, "-o", color=plt.cm.Blues(1 - 0.5 * m / machines), markersize=3, linewidth=1.2,
+                    label="build time" + (f" (machine {m + 1})" if machines > 1 else ""))
+        # Metrics are deterministic: the same on every machine, so one line over all entries.
         for k, (name, values) in enumerate(sorted(changed_metrics(g, entries).items())):
-            for xs, ys in segments(ratio_to_first(values, cuts), cuts):
-                ax.plot(xs, ys, "--", linewidth=1, color=plt.cm.tab10((k + 1) % 10), label=name)
+            xs = [i for i, v in enumerate(values) if v is not None]
+            first = values[xs[0]]
+            ax.plot(xs, [values[i] / first if first else None for i in xs], "--", linewidth=1,
+                    color=plt.cm.tab10((k + 1) % 10), label=name)
         for i, e in enumerate(entries):
             gate = e["gate"]
             if gate.get("judged") and gate.get("failed"):
@@ -228,8 +239,7 @@ td,th{{border:1px solid #ccc;padding:2px 6px;text-align:left}} img{{max-width:10
 <p>From {html.escape(data['database'])}. The gate judges each entry against the last {data['last']} entries of its
 suite and machine before it (bspbench regress --history): results as the newest, build times pooled.
 Build times are each run's gated samples over their in-run reference, a geometric mean per group, drawn as a
-ratio to the group's first entry on the same machine; a dotted rule is a change of machine, across which no line is
-drawn.</p>
+ratio to the first entry of the same machine, a line per machine; a dotted rule marks a change of machine.</p>
 {body}
 </body></html>
 """

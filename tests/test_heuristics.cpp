@@ -390,7 +390,7 @@ TEST(HeuristicCatalog, JsonListsEveryHeuristicWithItsParametersAndDefaults) {
   ASSERT_EQ(pclose(pipe), 0);
   const auto list = nlohmann::json::parse(text);
   // The heuristics, then the searching builders, which take names and parameters alike.
-  std::vector<HeuristicInfo> all = heuristics();
+  std::vector<HeuristicInfo> all(heuristics().begin(), heuristics().end());
   for (const auto& s : searches()) all.push_back({s.name, s.summary, s.params, true, {}});
   ASSERT_EQ(list.size(), all.size());
   for (std::size_t i = 0; i < list.size(); ++i) {

@@ -103,7 +103,9 @@ TEST_F(Plugins, SweepKeysAndCommandsCarryThePlugin) {
   const CliResult r2 = run("sweep --plugin " + copy.string() + " --suite " + suite.string() + " --fresh --threads 1 --out " +
                            out2.string() + " --journal-dir " + (dir_ / "journal").string());
   ASSERT_EQ(r2.code, 0) << r2.err;
-  for (const auto& run : nlohmann::json::parse(bsp::testing::slurp(out2))["runs"]) {
+  const auto report2 = nlohmann::json::parse(bsp::testing::slurp(out2));
+  ASSERT_EQ(report2["runs"].size(), 2u);
+  for (const auto& run : report2["runs"]) {
     if (run["id"]["heuristic"] == "test_first_plugin") EXPECT_NE(run["key"], plugin_key);
     else EXPECT_EQ(run["key"], builtin_key);
   }
@@ -146,6 +148,8 @@ TEST_F(Plugins, ExceptionInPluginCodeIsOneLineExitThree) {
                   3, {"plugin test_plugin", "heuristic test_throws", "choose() threw", "deep enough"});
   expect_one_line(run("build --plugin " + plugin("good") + " --scene random-triangles --n 50 --heuristic test_outside"), 3,
                   {"heuristic test_outside", "not in the node"});
+  expect_one_line(run("build --plugin " + plugin("good") + " --scene random-triangles --n 50 --heuristic test_free_autopartition"),
+                  3, {"heuristic test_free_autopartition", "declared an autopartition"});
   // In a sweep: it stops, exit 3, no report.
   const fs::path suite = write_suite(R"(["test_throws", "first"])", "");
   expect_one_line(run("sweep --plugin " + plugin("good") + " --suite " + suite.string() + " --fresh --threads 2 --out " +

@@ -8,8 +8,10 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "common/errors.h"
+#include "io/atomic_file.h"
 
 namespace bsp::cli {
 
@@ -48,6 +50,15 @@ int spawn(const std::vector<std::string>& argv) {
 }
 
 }  // namespace
+
+std::string write_page_data(const std::string& dir, const std::string& name, const nlohmann::json& data) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir + ": cannot create the output directory (" + ec.message() + ")");
+  const std::string path = (fs::path(dir) / name).string();
+  write_file_atomically(path, data.dump(1) + "\n");
+  return path;
+}
 
 int run_analysis_script(const std::string& script, const std::vector<std::string>& args) {
   const char* python = std::getenv("BSPBENCH_PYTHON");

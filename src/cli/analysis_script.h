@@ -9,7 +9,14 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 namespace bsp::cli {
+
+// Writes `data` as DIR/NAME (DIR created when missing; a temporary file renamed into place), for a
+// script to draw and beside the page it explains; returns the path. Throws InputError naming what
+// cannot be made or written.
+std::string write_page_data(const std::string& dir, const std::string& name, const nlohmann::json& data);
 
 // Runs `python SCRIPT ARGS...` and returns its exit status (128 + signal when killed). Throws
 // InputError when the script cannot be found or the interpreter not started.

@@ -4,12 +4,12 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "cli/analysis_script.h"
 #include "cli/commands.h"
+#include "cli/guard.h"
 #include "common/errors.h"
 #include "common/progress.h"
 #include "history/history.h"
@@ -22,38 +22,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr long long kMaxLast = 100;
-
-// history.json beside the page (a temporary file renamed into place), for the script and for
-// readers who want the numbers.
-std::string write_data(const nlohmann::json& data, const std::string& out) {
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (ec) throw InputError(out + ": cannot create the output directory (" + ec.message() + ")");
-  const fs::path path = fs::path(out) / "history.json", tmp = fs::path(out) / "history.json.tmp";
-  std::ofstream f(tmp);
-  f << data.dump(1) << "\n";
-  f.close();
-  if (!f) throw InputError(tmp.string() + ": cannot write");
-  fs::rename(tmp, path, ec);
-  if (ec) throw InputError(path.string() + ": cannot write (" + ec.message() + ")");
-  return path.string();
-}
-
 int run(Args& args) {
   const std::string db_path = args.required("--db");
   const std::vector<std::string> appends = args.options("--append");
   const auto out = args.option("--out");
   history::PageSettings settings;
   settings.suite = args.option("--suite");
-  settings.last = static_cast<std::size_t>(args.integer("--last", 1, kMaxLast).value_or(static_cast<long long>(settings.last)));
+  settings.last = static_cast<std::size_t>(
+      args.integer("--last", 1, static_cast<long long>(history::kMaxLast)).value_or(static_cast<long long>(settings.last)));
   args.finish();
   if (appends.empty() && !out) throw UsageError("give --append REPORT.json, --out DIR, or both");
   // Every report is read, and all appended in one transaction: a bad one appends none.
   std::vector<nlohmann::json> reports;
   for (const auto& a : appends) reports.push_back(results::read_report(a));
   history::Database db = history::Database::open(db_path, !appends.empty());
-  const std::vector<history::Entry> entries = db.append(reports);
+  const std::vector<history::Entry> entries = db.append(reports);  // none: nothing written
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const history::Entry& e = entries[i];
     std::cout << "history: appended " << appends[i] << " to " << db_path << " as entry " << e.id << " (" << e.suite << ", "
@@ -68,10 +51,12 @@ int run(Args& args) {
   settings.on_entry = [&](std::uint64_t entry_runs) { progress.job_done(static_cast<double>(entry_runs)); };
   const nlohmann::json data_json = history::page_data(db, settings);
   progress.finish();
-  const std::string data = write_data(data_json, *out);
+  // history.json beside the page: for the script, and for readers who want the numbers.
+  const std::string data = write_page_data(*out, "history.json", data_json);
   const int status = run_analysis_script("history.py", {"--data", data, "--out", *out});
   if (status == 0) std::cout << "history: wrote " << (fs::path(*out) / "index.html").string() << "\n";
-  return status == 0 ? 0 : status == 2 ? 2 : 1;
+  // history.py exits 2 on bad data; anything else (no matplotlib, a crash) is not the user's.
+  return status == 0 ? 0 : status == 2 ? 2 : kExitInternal;
 }
 
 }  // namespace

@@ -14,8 +14,6 @@ namespace bsp::cli {
 
 namespace {
 
-constexpr long long kDefaultLast = 5, kMaxLast = 100;
-
 // Whether the baseline is a Google Benchmark output (judged by gate/bench_gate.h) rather than a
 // sweep report; anything unreadable goes to the report reader, whose error names the problem.
 bool is_benchmark_file(const std::string& path) {
@@ -24,18 +22,14 @@ bool is_benchmark_file(const std::string& path) {
   return !doc.is_discarded() && gate::is_benchmark_output(doc);
 }
 
-// The pooled last `k` entries of the current report's suite on its machine (history/history.h),
-// the current report itself left out when it was appended already.
+// The pooled last `k` entries of the current report's suite on its machine (history/history.h)
+// before the current report: before its entry when it was appended already (neither it nor what
+// came after judges it).
 nlohmann::json history_baseline(const std::string& path, const nlohmann::json& current, std::size_t k) {
   const history::Database db = history::Database::open(path, false);
   const std::string suite = current["suite"]["name"].get<std::string>();
   const history::Machine machine = history::machine_of(current);
-  const nlohmann::json& env = current["shards"][0]["environment"];
-  std::vector<history::Entry> entries = db.last(suite, machine.fingerprint, k + 1);
-  std::erase_if(entries, [&](const history::Entry& e) {
-    return e.revision == env.value("git_revision", "") && e.date_utc == env.value("date_utc", "");
-  });
-  if (entries.size() > k) entries.erase(entries.begin());
+  const std::vector<history::Entry> entries = db.last(suite, machine.fingerprint, k, db.find(current));
   if (entries.empty())
     throw InputError(path + ": no earlier entry of suite " + suite + " on this machine (" + machine.cpu_model + ", " +
                      machine.fingerprint + ") to judge against");
@@ -46,22 +40,26 @@ nlohmann::json history_baseline(const std::string& path, const nlohmann::json& c
     reports.push_back(db.report(e.id));
   }
   std::cout << "\n";
-  return gate::pool_reports(reports);
+  std::vector<const nlohmann::json*> pointers;
+  for (const auto& r : reports) pointers.push_back(&r);
+  return gate::pool_reports(pointers);
 }
 
 int run(Args& args) {
   const auto baseline = args.option("--baseline");
   const auto history_path = args.option("--history");
   const std::string current = args.required("--current");
-  const auto last = static_cast<std::size_t>(args.integer("--last", 1, kMaxLast).value_or(kDefaultLast));
+  const auto last = args.integer("--last", 1, static_cast<long long>(history::kMaxLast));
   gate::RegressOptions options;
   options.time_tolerance = args.real("--time-tolerance").value_or(options.time_tolerance);
   options.alpha = args.real("--alpha").value_or(options.alpha);
   args.finish();
   if (baseline.has_value() == history_path.has_value()) throw UsageError("give either --baseline FILE or --history FILE.sqlite");
+  if (last && !history_path) throw UsageError("--last goes with --history");
   if (history_path) {
     const nlohmann::json report = results::read_report(current);
-    const auto result = gate::compare_reports(history_baseline(*history_path, report, last), report, options);
+    const std::size_t k = last ? static_cast<std::size_t>(*last) : history::kDefaultLast;
+    const auto result = gate::compare_reports(history_baseline(*history_path, report, k), report, options);
     gate::print_regress(result, std::cout);
     return result.failed() ? 1 : 0;
   }

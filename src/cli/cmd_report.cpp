@@ -23,18 +23,7 @@ std::string write_comparison(const std::string& baseline, const std::string& cur
   options.match = gate::RunMatch::Command;  // a changed default parameter pairs its runs, not drops them
   const gate::RegressResult result =
       gate::compare_reports(results::read_report(baseline), results::read_report(current), options);
-  std::error_code ec;
-  fs::create_directories(out, ec);
-  if (ec) throw InputError(out + ": cannot create the output directory (" + ec.message() + ")");
-  const fs::path path = fs::path(out) / "comparison.json";
-  const fs::path tmp = fs::path(out) / "comparison.json.tmp";
-  std::ofstream f(tmp);
-  f << gate::to_json(result).dump(1) << "\n";
-  f.close();
-  if (!f) throw InputError(tmp.string() + ": cannot write");
-  fs::rename(tmp, path, ec);
-  if (ec) throw InputError(path.string() + ": cannot write (" + ec.message() + ")");
-  return path.string();
+  return write_page_data(out, "comparison.json", gate::to_json(result));
 }
 
 int run(Args& args) {

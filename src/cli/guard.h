@@ -2,6 +2,7 @@
 // Runs one command so that nothing escapes it: every exception becomes one line
 // "bspbench COMMAND: ..." on `err` and an exit code (main.cpp lists them). Header-only, so the tests
 // can drive it with bodies that throw.
+#include <algorithm>
 #include <exception>
 #include <new>
 #include <ostream>
@@ -18,7 +19,12 @@ inline constexpr int kExitInternal = 3;  // a plugin's exception, or anything el
 // `usage` is printed after a UsageError; `body` returns the command's exit code.
 template <class Body>
 int run_guarded(std::string_view command, std::string_view usage, Body&& body, std::ostream& err) {
-  const auto line = [&](std::string_view what) { err << "bspbench " << command << ": " << what << "\n"; };
+  // One line whatever the message holds (a plugin's text, dlerror()): its line breaks become spaces.
+  const auto line = [&](std::string_view what) {
+    std::string text(what);
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    err << "bspbench " << command << ": " << text << "\n";
+  };
   try {
     return body();
   } catch (const UsageError& e) {

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <iostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/commands.h"
@@ -35,10 +36,11 @@ bool asks_for_help(const std::vector<std::string>& args) {
 // Takes every "--plugin PATH" and "--plugin=PATH" out of `args` and loads the plugins. Throws
 // UsageError for a --plugin without a path, InputError or PluginError for a bad plugin.
 void load_plugins(std::vector<std::string>& args) {
+  constexpr std::string_view kJoined = "--plugin=";
   std::vector<std::string> rest;
   for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i].starts_with("--plugin=")) {
-      bsp::experiments::load_plugin(args[i].substr(9));
+    if (args[i].starts_with(kJoined)) {
+      bsp::experiments::load_plugin(args[i].substr(kJoined.size()));
     } else if (args[i] == "--plugin") {
       if (i + 1 == args.size() || args[i + 1].empty()) throw bsp::UsageError("--plugin needs the path of a plugin (a .so)");
       bsp::experiments::load_plugin(args[++i]);

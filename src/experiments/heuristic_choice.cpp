@@ -1,5 +1,7 @@
 #include "experiments/heuristic_choice.h"
 
+#include <algorithm>
+#include <cctype>
 #include <string_view>
 
 #include "common/errors.h"
@@ -71,9 +73,25 @@ void add_plugin_identity(Hasher& key, const std::string& name) {
   if (const PluginIdentity* p = heuristic_plugin(name)) key.add_string("plugin " + p->text());
 }
 
+namespace {
+
+// `word` as one word of a shell command: as it is when it holds only characters no shell treats
+// specially, else in single quotes.
+std::string shell_word(const std::string& word) {
+  const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](unsigned char c) {
+    return std::isalnum(c) || std::string_view("_./+-=:,@%").find(static_cast<char>(c)) != std::string_view::npos;
+  });
+  if (plain) return word;
+  std::string out = "'";
+  for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
 std::string plugin_arguments(const std::string& name) {
   const PluginIdentity* p = heuristic_plugin(name);
-  return p ? " --plugin " + p->path : std::string();
+  return p ? " --plugin " + shell_word(p->path) : std::string();
 }
 
 std::string HeuristicChoice::arguments() const {

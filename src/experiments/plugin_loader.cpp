@@ -37,7 +37,6 @@ class Fault {
   void check() const {
     if (failed()) throw PluginError(message_);
   }
-  const std::string& who() const { return who_; }
 
  private:
   std::string who_;
@@ -61,8 +60,10 @@ std::string what_of(std::exception_ptr e) {
 // fault (Splitter::check) instead of leaving a parallel region, and a fault stops further calls.
 class PluginSplitter final : public Splitter {
  public:
-  PluginSplitter(std::unique_ptr<Splitter> inner, std::shared_ptr<Fault> fault)
-      : inner_(std::move(inner)), fault_(std::move(fault)), needs_cell_(inner_ && inner_->needs_cell()) {}
+  // `autopartition`: as the heuristic declared it (HeuristicInfo), which a free plane then breaks.
+  PluginSplitter(std::unique_ptr<Splitter> inner, std::shared_ptr<Fault> fault, bool autopartition)
+      : inner_(std::move(inner)), fault_(std::move(fault)), needs_cell_(inner_ && inner_->needs_cell()),
+        autopartition_(autopartition) {}
 
   SplitChoice choose(const SplitContext& ctx) override {
     if (!inner_ || fault_->failed()) return SplitChoice::none();
@@ -84,18 +85,21 @@ class PluginSplitter final : public Splitter {
       } catch (...) {
         fault_->record("clone() threw: " + what_of(std::current_exception()));
       }
-    return std::make_unique<PluginSplitter>(std::move(copy), fault_);
+    return std::make_unique<PluginSplitter>(std::move(copy), fault_, autopartition_);
   }
 
   bool needs_cell() const override { return needs_cell_; }
   void check() const override { fault_->check(); }
 
  private:
-  // Why the build loop cannot take `c`, or empty: a fragment not in the node, a plane that is none.
-  static std::string invalid(const SplitChoice& c, const SplitContext& ctx) {
+  // Why the build loop cannot take `c`, or empty: a fragment not in the node, a plane that is none,
+  // a free plane from a heuristic declared an autopartition.
+  std::string invalid(const SplitChoice& c, const SplitContext& ctx) const {
     if (c.kind == SplitChoice::Kind::Fragment &&
         std::find(ctx.ids.begin(), ctx.ids.end(), c.fragment) == ctx.ids.end())
       return "choose() picked fragment " + std::to_string(c.fragment) + ", which is not in the node";
+    if (c.kind == SplitChoice::Kind::Free && autopartition_)
+      return "choose() returned a free plane, but the heuristic is declared an autopartition";
     if (c.kind == SplitChoice::Kind::Free) {
       const Plane& p = c.plane;
       const bool finite = std::isfinite(p.n.x) && std::isfinite(p.n.y) && std::isfinite(p.n.z) && std::isfinite(p.d);
@@ -107,12 +111,14 @@ class PluginSplitter final : public Splitter {
   std::unique_ptr<Splitter> inner_;
   std::shared_ptr<Fault> fault_;
   bool needs_cell_;
+  bool autopartition_;
 };
 
 // `info` with its `make` guarded: a throw names the plugin, and the splitter is a PluginSplitter.
 HeuristicInfo guarded(HeuristicInfo info, const std::string& plugin) {
   const std::string who = "plugin " + plugin + ", heuristic " + info.name;
-  info.make = [make = std::move(info.make), who](const ParamSet& params, std::uint64_t seed) {
+  info.make = [make = std::move(info.make), who, autopartition = info.autopartition](const ParamSet& params,
+                                                                                   std::uint64_t seed) {
     std::unique_ptr<Splitter> inner;
     try {
       inner = make(params, seed);
@@ -120,15 +126,20 @@ HeuristicInfo guarded(HeuristicInfo info, const std::string& plugin) {
       throw PluginError(who + ": make threw: " + what_of(std::current_exception()));
     }
     if (!inner) throw PluginError(who + ": make returned no splitter");
-    return std::unique_ptr<Splitter>(std::make_unique<PluginSplitter>(std::move(inner), std::make_shared<Fault>(who)));
+    return std::unique_ptr<Splitter>(
+        std::make_unique<PluginSplitter>(std::move(inner), std::make_shared<Fault>(who), autopartition));
   };
   return info;
 }
 
+// Bytes read at a time when hashing a plugin's file.
+constexpr std::size_t kHashChunk = 1 << 16;
+
 std::string content_hash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("plugin " + path + ": cannot open the file");
   Hasher h;
-  std::string chunk(1 << 16, '\0');
+  std::string chunk(kHashChunk, '\0');
   while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
     h.add_string(std::string_view(chunk.data(), static_cast<std::size_t>(in.gcount())));
   if (in.bad()) throw InputError("plugin " + path + ": cannot read the file");

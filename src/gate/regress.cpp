@@ -227,13 +227,13 @@ void compare_runs(const nlohmann::json& baseline, const nlohmann::json& current,
 
 }  // namespace
 
-nlohmann::json pool_reports(std::span<const nlohmann::json> reports) {
+nlohmann::json pool_reports(std::span<const nlohmann::json* const> reports) {
   if (reports.empty()) throw InputError("no reports to pool");
-  nlohmann::json pooled = reports.back();
+  nlohmann::json pooled = *reports.back();
   const auto calibration = [](const nlohmann::json& run) { return run.value("calibration_seconds", 0.0); };
   std::map<std::string, std::vector<const nlohmann::json*>> older;
   for (std::size_t i = 0; i + 1 < reports.size(); ++i)
-    for (const auto& r : reports[i]["runs"]) older[r["key"].get<std::string>()].push_back(&r);
+    for (const auto& r : (*reports[i])["runs"]) older[r["key"].get<std::string>()].push_back(&r);
   for (auto& run : pooled["runs"]) {
     const auto it = older.find(run["key"].get<std::string>());
     const std::string gated = gated_field(run);

@@ -100,7 +100,7 @@ RegressResult compare_reports(const nlohmann::json& baseline, const nlohmann::js
 // from every report holding the run. Each report's samples and references are scaled by the newest
 // report's calibration over its own, so a comparison by calibration stays on one scale and one by
 // reference is unchanged. Throws InputError for no reports.
-nlohmann::json pool_reports(std::span<const nlohmann::json> reports);
+nlohmann::json pool_reports(std::span<const nlohmann::json* const> reports);
 
 // A run's timing group and gated samples, each divided by its batch's reference (by the calibration
 // when the run has no references): what the history's timing series are made of.

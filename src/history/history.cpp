@@ -27,8 +27,10 @@ constexpr const char* kSchema = R"(
   CREATE TABLE sweeps(id INTEGER PRIMARY KEY AUTOINCREMENT, suite TEXT NOT NULL,
                       machine TEXT NOT NULL REFERENCES machines(fingerprint), revision TEXT NOT NULL,
                       definition_hash TEXT NOT NULL, date_utc TEXT NOT NULL, calibration_seconds REAL NOT NULL,
-                      runs INTEGER NOT NULL, failures INTEGER NOT NULL, report TEXT NOT NULL);
+                      runs INTEGER NOT NULL, failures INTEGER NOT NULL, report_hash TEXT NOT NULL,
+                      report TEXT NOT NULL);
   CREATE INDEX sweeps_series ON sweeps(suite, machine, id);
+  CREATE INDEX sweeps_report ON sweeps(report_hash);
 )";
 
 // A prepared statement, finalized when it goes out of scope.
@@ -65,6 +67,7 @@ class Statement {
     return p ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(s_, column))) : std::string();
   }
   std::int64_t integer(int column) const { return sqlite3_column_int64(s_, column); }
+  sqlite3_stmt* handle() const { return s_; }
   double real(int column) const { return sqlite3_column_double(s_, column); }
 
  private:
@@ -99,6 +102,11 @@ void check_or_create(sqlite3* db, const std::string& path, bool create) {
   if (id == 0 && tables == 0) {
     if (!create) throw InputError(path + ": an empty database, not a bspbench history");
     execute(db, path, "BEGIN IMMEDIATE");
+    // Another process may have made it between the look and the lock.
+    if (pragma(db, path, "SELECT count(*) FROM sqlite_schema") > 0) {
+      execute(db, path, "COMMIT");
+      return check_or_create(db, path, false);
+    }
     execute(db, path, kSchema);
     execute(db, path, ("PRAGMA application_id = " + std::to_string(kApplicationId)).c_str());
     execute(db, path, ("PRAGMA user_version = " + std::to_string(kSchemaVersion)).c_str());
@@ -132,12 +140,20 @@ Entry read_entry(const Statement& s) {
   e.machine.hardware_threads = static_cast<std::uint64_t>(s.integer(10));
   e.machine.compiler = s.text(11);
   e.machine.flags = s.text(12);
+  e.report_hash = s.text(13);
   return e;
 }
 
 constexpr const char* kEntryColumns =
     "SELECT s.id, s.suite, s.machine, s.revision, s.definition_hash, s.date_utc, s.calibration_seconds, s.runs, "
-    "s.failures, m.cpu_model, m.hardware_threads, m.compiler, m.flags FROM sweeps s JOIN machines m ON m.fingerprint = s.machine ";
+    "s.failures, m.cpu_model, m.hardware_threads, m.compiler, m.flags, s.report_hash "
+    "FROM sweeps s JOIN machines m ON m.fingerprint = s.machine ";
+
+std::string json_hash(const std::string& text) {
+  Hasher h;
+  h.add_string(text);
+  return h.hex();
+}
 
 }  // namespace
 
@@ -164,7 +180,7 @@ Database Database::open(const std::string& path, bool create) {
   if (!create && !std::filesystem::exists(path, ec)) throw InputError(path + ": no such history database");
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": a directory, not a history database");
   sqlite3* db = nullptr;
-  const int flags = SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0);
+  const int flags = create ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE : SQLITE_OPEN_READONLY;
   if (sqlite3_open_v2(path.c_str(), &db, flags, nullptr) != SQLITE_OK) {
     const std::string what = db ? sqlite3_errmsg(db) : "out of memory";
     sqlite3_close(db);
@@ -187,7 +203,7 @@ Database& Database::operator=(Database&& o) noexcept {
 namespace {
 
 // The entry a report will be (id 0); throws InputError when it is none to append.
-Entry entry_of(const nlohmann::json& report, const std::string& what) {
+Entry entry_of(const nlohmann::json& report, const std::string& what) try {
   const nlohmann::json& suite = field(report, "suite", what);
   const nlohmann::json& shards = field(report, "shards", what);
   if (!shards.is_array() || shards.empty()) throw InputError(what + ": no shards");
@@ -205,14 +221,21 @@ Entry entry_of(const nlohmann::json& report, const std::string& what) {
   e.failures = report.value("failures", nlohmann::json::array()).size();
   e.machine = machine_of(report);
   return e;
+} catch (const nlohmann::json::exception& x) {  // a field of the wrong type
+  throw InputError(what + ": " + x.what());
 }
 
 }  // namespace
 
 std::vector<Entry> Database::append(std::span<const nlohmann::json> reports) {
   std::vector<Entry> out;
-  for (std::size_t i = 0; i < reports.size(); ++i)
+  std::vector<std::string> texts;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
     out.push_back(entry_of(reports[i], "report " + std::to_string(i + 1) + " to append to " + path_));
+    texts.push_back(reports[i].dump());
+    out.back().report_hash = json_hash(texts.back());
+  }
+  if (reports.empty()) return out;
   execute(db_, path_, "BEGIN IMMEDIATE");
   try {
     for (std::size_t i = 0; i < reports.size(); ++i) {
@@ -223,10 +246,10 @@ std::vector<Entry> Database::append(std::span<const nlohmann::json> reports) {
           .bind(5, e.machine.flags).step();
       Statement(db_, path_,
                 "INSERT INTO sweeps(suite, machine, revision, definition_hash, date_utc, calibration_seconds, runs, "
-                "failures, report) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)")
+                "failures, report_hash, report) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)")
           .bind(1, e.suite).bind(2, e.machine.fingerprint).bind(3, e.revision).bind(4, e.definition_hash)
           .bind(5, e.date_utc).bind(6, e.calibration_seconds).bind(7, static_cast<std::int64_t>(e.runs))
-          .bind(8, static_cast<std::int64_t>(e.failures)).bind(9, reports[i].dump()).step();
+          .bind(8, static_cast<std::int64_t>(e.failures)).bind(9, e.report_hash).bind(10, texts[i]).step();
       e.id = sqlite3_last_insert_rowid(db_);
     }
     execute(db_, path_, "COMMIT");
@@ -256,6 +279,13 @@ std::vector<Entry> Database::last(const std::string& suite, const std::string& f
   while (s.step()) out.push_back(read_entry(s));
   std::reverse(out.begin(), out.end());
   return out;
+}
+
+std::optional<std::int64_t> Database::find(const nlohmann::json& report) const {
+  Statement s(db_, path_, "SELECT min(id) FROM sweeps WHERE report_hash = ?1");
+  s.bind(1, json_hash(report.dump()));
+  if (!s.step() || sqlite3_column_type(s.handle(), 0) == SQLITE_NULL) return std::nullopt;
+  return s.integer(0);
 }
 
 nlohmann::json Database::report(std::int64_t id) const {

@@ -21,6 +21,10 @@ struct sqlite3;
 
 namespace bsp::history {
 
+// How many earlier entries judge a run (regress --history, the page): the default and the most.
+inline constexpr std::size_t kDefaultLast = 5;
+inline constexpr std::size_t kMaxLast = 100;
+
 // What identifies a machine for timing comparisons: its processor, core count, compiler and flags
 // (a report's environment). Timings of different machines are never compared.
 struct Machine {
@@ -37,13 +41,14 @@ struct Entry {
   Machine machine;
   double calibration_seconds = 0;
   std::uint64_t runs = 0, failures = 0;
+  std::string report_hash;  // 16 hex digits of the report's JSON: finds a report appended already
 };
 
 class Database {
  public:
-  // Opens (creating when `create` and missing) the database at `path`. Throws InputError naming the
-  // file for one that is not a SQLite database, not bspbench's, of another schema version, or
-  // cannot be opened, read or (when writing) written.
+  // Opens the database at `path`: for appending, created when missing (`create`), else read-only.
+  // Throws InputError naming the file for one that is not a SQLite database, not bspbench's, of
+  // another schema version, or cannot be opened, read or (when appending) written.
   static Database open(const std::string& path, bool create);
   ~Database();
   Database(Database&&) noexcept;
@@ -61,6 +66,8 @@ class Database {
                           std::optional<std::int64_t> before = std::nullopt) const;
   // The report of an entry.
   nlohmann::json report(std::int64_t id) const;
+  // The first entry holding this very report, if it was appended.
+  std::optional<std::int64_t> find(const nlohmann::json& report) const;
   const std::string& path() const { return path_; }
 
  private:

@@ -26,13 +26,13 @@ std::map<std::string, GroupValues> group_values(const nlohmann::json& report) {
   for (const auto& run : report["runs"]) {
     const gate::RunTiming t = gate::run_timing(run);
     GroupValues& g = out[t.group];
-    if (!t.samples.empty() && median(t.samples) > 0) {
-      g.log_timing += std::log(median(t.samples));
+    if (const double m = t.samples.empty() ? 0.0 : median(t.samples); m > 0) {
+      g.log_timing += std::log(m);
       ++g.timed;
     }
     if (!run.contains("metrics") || !run["metrics"].is_object()) continue;
     for (const auto& [k, v] : run["metrics"].items())
-      if (v.is_number() && !v.is_boolean()) g.metrics[k] += v.get<double>();
+      if (v.is_number()) g.metrics[k] += v.get<double>();
   }
   return out;
 }
@@ -41,7 +41,8 @@ std::map<std::string, GroupValues> group_values(const nlohmann::json& report) {
 nlohmann::json decision(const std::deque<nlohmann::json>& earlier, const nlohmann::json& report,
                         const std::vector<std::int64_t>& against) {
   if (earlier.empty()) return {{"judged", false}};
-  const std::vector<nlohmann::json> reports(earlier.begin(), earlier.end());
+  std::vector<const nlohmann::json*> reports;
+  for (const nlohmann::json& e : earlier) reports.push_back(&e);
   const gate::RegressResult r = gate::compare_reports(gate::pool_reports(reports), report, gate::RegressOptions{});
   std::set<std::string> slower;
   std::size_t regressions = 0;

@@ -18,7 +18,7 @@
 namespace bsp::history {
 
 struct PageSettings {
-  std::size_t last = 5;  // k: how many earlier entries of the same suite and machine judge an entry
+  std::size_t last = kDefaultLast;  // k: how many earlier entries of the same suite and machine judge an entry
   std::optional<std::string> suite;  // only this suite
   // Called after each entry is read and judged (done of total, every suite's entries counted), when
   // set: the CLI's progress line. An entry's weight is its runs.

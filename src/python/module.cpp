@@ -12,6 +12,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
+#include <limits>
+
 #include <nlohmann/json.hpp>
 
 #include "catalog.h"
@@ -37,6 +40,20 @@ namespace py = pybind11;
 namespace bsp::python {
 
 namespace {
+
+// Marks a call that looks heuristics up with the GIL released (build, merge, run_suite) for its
+// length: the registry is read without a lock, so no plugin is registered while one runs.
+class Lookup {
+ public:
+  Lookup() { ++running(); }
+  ~Lookup() { --running(); }
+  Lookup(const Lookup&) = delete;
+  Lookup& operator=(const Lookup&) = delete;
+  static std::atomic<int>& running() {
+    static std::atomic<int> n{0};
+    return n;
+  }
+};
 
 // JSON as Python objects, through the json module: dicts, lists, numbers, strings.
 py::object to_python(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
@@ -111,27 +128,33 @@ BuiltTree build(const std::shared_ptr<Scene>& scene, const std::string& heuristi
                 std::uint64_t seed, const std::string& shape) {
   BuildOptions options;
   options.shape = shape_of(shape);
+  const Lookup lookup;
   const auto choice = experiments::HeuristicChoice::of(heuristic, assignments(params));
   py::gil_scoped_release release;
   return {choice.build(scene->polygons, options, seed), scene};
 }
 
+// OpenMP's thread count for this thread, restored when it goes out of scope.
+class OneThread {
+ public:
+  OneThread() : threads_(omp_get_max_threads()) { omp_set_num_threads(1); }
+  ~OneThread() { omp_set_num_threads(threads_); }
+  OneThread(const OneThread&) = delete;
+  OneThread& operator=(const OneThread&) = delete;
+
+ private:
+  int threads_;
+};
+
 BuiltTree build_python(const std::shared_ptr<Scene>& scene, py::function splitter, const std::string& shape) {
   BuildOptions options;
   options.shape = shape_of(shape);
+  // No subtree handed off as a task: the callable is called with the GIL held, from this thread
+  // only, on one OpenMP thread.
+  options.min_task_fragments = std::numeric_limits<std::size_t>::max();
   PythonSplitter s(std::move(splitter));
-  // One thread: the callable is called with the GIL held, from this thread only.
-  const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  Tree tree;
-  try {
-    tree = build_tree(scene->polygons, s, options);
-  } catch (...) {
-    omp_set_num_threads(threads);
-    throw;
-  }
-  omp_set_num_threads(threads);
-  return {std::move(tree), scene};
+  const OneThread one;
+  return {build_tree(scene->polygons, s, options), scene};
 }
 
 py::object metrics(const BuiltTree& t, std::uint32_t views, std::uint32_t rays, std::uint64_t seed) {
@@ -176,6 +199,7 @@ py::array_t<std::uint32_t> fragment_sources(const BuiltTree& t) {
 
 py::object merge(const Scene& a, const Scene& b, const std::string& op, const std::string& heuristic, const py::dict& params,
                  std::uint64_t seed, std::uint64_t points) {
+  const Lookup lookup;
   const auto splitter = experiments::per_node_splitter(heuristic, assignments(params), seed);
   SolidCheckSettings settings;
   settings.points = points;
@@ -192,6 +216,7 @@ py::object merge(const Scene& a, const Scene& b, const std::string& op, const st
 }
 
 py::object run_suite(const std::string& suite_name, int threads, const std::string& journal_dir, bool fresh) {
+  const Lookup lookup;
   const suite::Suite suite = suite::find_suite(suite_name);
   sweep::SweepOptions options;
   options.threads = threads;
@@ -216,6 +241,8 @@ py::list heuristic_list() {
 }
 
 py::dict load_plugin(const std::string& path) {
+  if (Lookup::running() > 0)
+    throw std::runtime_error("load_plugin: a build, merge or suite is running in another thread; load plugins first");
   const PluginIdentity& p = experiments::load_plugin(path);
   py::dict d;
   d["name"] = p.name, d["version"] = p.version, d["hash"] = p.hash, d["path"] = p.path;

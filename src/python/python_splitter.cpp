@@ -91,10 +91,12 @@ std::variant<SplitChoice, std::string> read_answer(const py::object& answer, con
 
 }  // namespace
 
+PythonSplitter::PythonSplitter(py::function choose) : PythonSplitter(std::move(choose), std::make_shared<Error>()) {}
+
 PythonSplitter::~PythonSplitter() = default;
 
 SplitChoice PythonSplitter::choose(const SplitContext& ctx) {
-  if (error_) return SplitChoice::none();
+  if (*error_) return SplitChoice::none();
   Node node{&ctx};
   py::object handle = py::cast(node);
   try {
@@ -105,19 +107,21 @@ SplitChoice PythonSplitter::choose(const SplitContext& ctx) {
     PyErr_SetString(PyExc_ValueError, std::get<std::string>(choice).c_str());
     throw py::error_already_set();
   } catch (py::error_already_set& e) {
-    error_ = std::move(e);
+    *error_ = std::move(e);
   } catch (const py::cast_error& e) {
     PyErr_SetString(PyExc_TypeError, (std::string("the splitter returned neither a fragment id, a plane nor None: ") + e.what()).c_str());
-    error_ = py::error_already_set();
+    *error_ = py::error_already_set();
   }
   handle.cast<Node&>().ctx = nullptr;
   return SplitChoice::none();
 }
 
-std::unique_ptr<Splitter> PythonSplitter::clone() const { return std::make_unique<PythonSplitter>(choose_); }
+std::unique_ptr<Splitter> PythonSplitter::clone() const {
+  return std::unique_ptr<Splitter>(new PythonSplitter(choose_, error_));
+}
 
 void PythonSplitter::check() const {
-  if (error_) throw *error_;
+  if (*error_) throw **error_;
 }
 
 void register_node(py::module_& m) {

@@ -1,5 +1,6 @@
 #include "split/registry.h"
 
+#include <stdexcept>
 #include <utility>
 
 #include "common/errors.h"
@@ -11,7 +12,7 @@ namespace {
 // The registry: built-ins first. Plugins add to it at start-up only (register_heuristic), so
 // lookups during a run read a table no one writes.
 struct Registry {
-  std::vector<HeuristicInfo> all = {
+  std::deque<HeuristicInfo> all = {
       first_heuristic(),
       random_heuristic(),
       balanced_heuristic(),
@@ -35,16 +36,12 @@ Registry& registry() {
 
 }  // namespace
 
-const std::vector<HeuristicInfo>& heuristics() { return registry().all; }
+const std::deque<HeuristicInfo>& heuristics() { return registry().all; }
 
 void register_heuristic(HeuristicInfo info, PluginIdentity from) {
   Registry& r = registry();
   for (const auto& h : r.all)
-    if (h.name == info.name) {
-      const PluginIdentity* other = heuristic_plugin(h.name);
-      throw UsageError("heuristic '" + info.name + "' is already registered (" +
-                       (other ? "by plugin " + other->name + ", " + other->path : std::string("a built-in")) + ")");
-    }
+    if (h.name == info.name) throw std::logic_error("register_heuristic: '" + info.name + "' is registered already");
   r.plugins.emplace_back(info.name, std::move(from));
   r.all.push_back(std::move(info));
 }

@@ -3,6 +3,7 @@
 // everything inside takes a Splitter. Tests, benchmarks and sweeps iterate over heuristics(), so a
 // heuristic added here is tested and measured without further wiring.
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -24,7 +25,7 @@ struct HeuristicInfo {
   std::function<std::unique_ptr<Splitter>(const ParamSet&, std::uint64_t seed)> make;
 };
 
-// Where a heuristic loaded at run time came from (split/plugin_loader.h): what joins the keys of
+// Where a heuristic loaded at run time came from (experiments/plugin_loader.h): what joins the keys of
 // the jobs that use it and the commands that repeat them.
 struct PluginIdentity {
   std::string name;     // the plugin's own name
@@ -35,11 +36,12 @@ struct PluginIdentity {
   std::string text() const { return name + " " + version + " " + hash; }
 };
 
-// The built-ins, then the heuristics plugins registered, in the order they were loaded.
-const std::vector<HeuristicInfo>& heuristics();
-// Adds a plugin's heuristic. Only at start-up, on one thread, before any heuristic is looked up
-// (references from heuristics() and find_heuristic() are invalidated). Throws UsageError for a name
-// already registered (a built-in's, a search's or another plugin's; the caller names the plugin).
+// The built-ins, then the heuristics plugins registered, in the order they were loaded. A deque:
+// registering keeps references to the others valid.
+const std::deque<HeuristicInfo>& heuristics();
+// Adds a plugin's heuristic (experiments/plugin_loader.h, which checks the name first). Not while
+// another thread looks heuristics up: the CLI registers at start-up, the Python module only when no
+// call is running. Throws std::logic_error for a name already registered.
 void register_heuristic(HeuristicInfo info, PluginIdentity from);
 // The plugin that registered `name`, or null for a built-in.
 const PluginIdentity* heuristic_plugin(std::string_view name);

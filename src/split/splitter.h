@@ -63,7 +63,7 @@ class Splitter {
   virtual bool needs_cell() const { return false; }
   // Throws the error the splitter met while choosing, if any. choose() and clone() run inside the
   // build's parallel regions, which no exception may leave, so a splitter that can fail (a
-  // plugin's: split/plugin_loader.cpp) records the error, answers Kind::None from then on, and
+  // plugin's: experiments/plugin_loader.cpp) records the error, answers Kind::None from then on, and
   // the build calls this once its tree is done, outside any parallel region.
   virtual void check() const {}
 };

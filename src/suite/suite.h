@@ -26,7 +26,6 @@ struct SuiteSource {
 struct Suite {
   std::string name;
   std::string summary;  // one line: what it runs
-  std::vector<std::string> plugins;  // the plugins it loaded ("plugins"), absolute paths
   std::vector<SuiteBlock> blocks;
   SuiteSource source = {};
 };

@@ -47,9 +47,11 @@ void resume(const Journal& journal, Work& w) {
 void run_pending(Work& w, Journal& journal, double calibration, int threads, const experiments::RunContext& context,
                  Progress* progress) {
   // The journal failed (results could no longer be kept), or a plugin threw (its other jobs
-  // would too): the sweep stops, the journal keeping the runs done, and rethrows it.
+  // would too): the sweep starts no more jobs and rethrows it. After a plugin's fault, jobs still
+  // running are journaled when they end, so a rerun resumes them.
   std::exception_ptr fatal;
   std::atomic<bool> stop{false};
+  bool journal_failed = false;
   const auto count = static_cast<std::int64_t>(w.pending.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (std::int64_t i = 0; i < count; ++i) {
@@ -77,13 +79,13 @@ void run_pending(Work& w, Journal& journal, double calibration, int threads, con
     {
       if (error) {
         w.failures.push_back({{"key", job.key()}, {"id", job.identity()}, {"error", *error}});
-      } else if (!stop) {
+      } else if (!journal_failed) {
         try {
           journal.append(record);
           w.runs.push_back(std::move(record));
         } catch (...) {
           if (!fatal) fatal = std::current_exception();
-          stop = true;
+          stop = journal_failed = true;
         }
       }
       if (progress) progress->job_done(weight(job));

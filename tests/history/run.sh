@@ -4,7 +4,7 @@
 # make them), r4 with crystal's builds slowed 3x (BSPBENCH_PLANT_SLOWDOWN), r5 on "another machine"
 # (its processor rewritten). Checks:
 #   - regress --history judges a clean run as passing and the planted run as failing, against the
-#     pooled last entries of the same suite and machine;
+#     pooled last entries of the same suite and machine, and an appended report by those before it;
 #   - bspbench history draws the page (DIR, for the browser test) and its data say what the page
 #     marks: r4 failed with crystal's group slower, r5 not judged (a new machine: a break);
 #   - bad databases and reports: one line, exit 2, nothing appended or written.
@@ -44,6 +44,10 @@ fi
 grep -q "crystal" "$work/regress_r4.log" || fail "the failing regress does not name crystal: $(cat "$work/regress_r4.log")"
 "$exe" history --db "$db" --append "$work/r4.json" --append "$work/r5.json" --out "$page" --last 3
 [[ -f $page/index.html ]] || fail "no page"
+# A report appended already is judged by the entries before it only, not by itself or later ones.
+"$exe" regress --history "$db" --current "$work/r3.json" --last 3 >"$work/regress_r3.log" || fail "r3 failed against r1, r2"
+grep -q "against 2 entries of .*: 1 (r1-0000000000) 2 (r2-0000000000)$" "$work/regress_r3.log" ||
+  fail "r3 was not judged by r1 and r2 alone: $(head -1 "$work/regress_r3.log")"
 /usr/bin/python3 - "$page/history.json" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))

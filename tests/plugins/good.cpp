@@ -1,6 +1,7 @@
 // A well-formed plugin for the tests: `test_first_plugin`, the first fragment of the node (as the
 // built-in `first`), and `test_throws`, which throws once a node is deep enough, and
-// `test_outside`, which picks a fragment not in the node, for the fault paths
+// `test_outside`, which picks a fragment not in the node, and `test_free_autopartition`, a free
+// plane from a heuristic declared an autopartition, for the fault paths
 // (experiments/plugin_loader.cpp).
 #include <stdexcept>
 
@@ -27,6 +28,13 @@ class Throws final : public bsp::Splitter {
   std::uint32_t depth_;
 };
 
+// Declared an autopartition, yet answers a free plane.
+class FreePlane final : public bsp::Splitter {
+ public:
+  bsp::SplitChoice choose(const bsp::SplitContext&) override { return bsp::SplitChoice::free_plane({{0, 0, 1}, 0}); }
+  std::unique_ptr<bsp::Splitter> clone() const override { return std::make_unique<FreePlane>(); }
+};
+
 class Outside final : public bsp::Splitter {
  public:
   bsp::SplitChoice choose(const bsp::SplitContext&) override { return bsp::SplitChoice::of_fragment(0xfffffffe); }
@@ -43,6 +51,8 @@ bsp::PluginInfo describe() {
        [](const bsp::ParamSet& p, std::uint64_t) { return std::make_unique<Throws>(static_cast<std::uint32_t>(p.integer("depth"))); }});
   info.heuristics.push_back({"test_outside", "a fragment not in the node (a test plugin)", {}, true,
                              [](const bsp::ParamSet&, std::uint64_t) { return std::make_unique<Outside>(); }});
+  info.heuristics.push_back({"test_free_autopartition", "a free plane, declared an autopartition (a test plugin)", {},
+                             true, [](const bsp::ParamSet&, std::uint64_t) { return std::make_unique<FreePlane>(); }});
   return info;
 }
 
