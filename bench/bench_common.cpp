@@ -13,6 +13,7 @@
 #include "common/errors.h"
 #include "common/revision.h"
 #include "experiments/draw/draw.h"
+#include "experiments/plugin_loader.h"
 #include "metrics/traversal_cost.h"
 #include "metrics/tree_metrics.h"
 #include "split/registry.h"
@@ -62,6 +63,12 @@ CachedTree& cached_tree() {
   return cache;
 }
 
+// Loads a plugin and names it in the output's context, as a sweep's environment does.
+void load_plugin(const std::string& path) {
+  const PluginIdentity& p = experiments::load_plugin(path);
+  benchmark::AddCustomContext("plugin " + p.name, p.version + " " + p.hash + " " + p.path);
+}
+
 }  // namespace
 
 Selection take_selection(int& argc, char** argv, Selection defaults) {
@@ -69,7 +76,10 @@ Selection take_selection(int& argc, char** argv, Selection defaults) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const auto value = [&](const char* flag) { return arg.substr(std::string(flag).size()); };
-    if (arg.rfind("--bsp_scenes=", 0) == 0) defaults.scenes = split_list(value("--bsp_scenes="));
+    if (arg.rfind("--plugin=", 0) == 0) load_plugin(value("--plugin="));
+    else if (arg == "--plugin" && i + 1 < argc) load_plugin(argv[++i]);
+    else if (arg == "--plugin") throw UsageError("--plugin needs the path of a plugin (a .so)");
+    else if (arg.rfind("--bsp_scenes=", 0) == 0) defaults.scenes = split_list(value("--bsp_scenes="));
     else if (arg.rfind("--bsp_heuristics=", 0) == 0) defaults.heuristics = split_list(value("--bsp_heuristics="));
     else if (arg.rfind("--bsp_sizes=", 0) == 0) defaults.sizes = parse_sizes(value("--bsp_sizes="));
     else argv[kept++] = argv[i];
@@ -137,7 +147,12 @@ int run_benchmarks(int argc, char** argv, const std::string& binary) {
   int n = static_cast<int>(args.size());
   benchmark::Initialize(&n, args.data());
   if (benchmark::ReportUnrecognizedArguments(n, args.data())) return 2;
-  benchmark::RunSpecifiedBenchmarks();
+  try {
+    benchmark::RunSpecifiedBenchmarks();
+  } catch (const PluginError& e) {  // thrown by a build after a plugin's splitter failed
+    std::cerr << binary << ": " << e.what() << "\n";
+    return 3;
+  }
   benchmark::Shutdown();
   return 0;
 }

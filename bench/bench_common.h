@@ -6,6 +6,8 @@
 //
 // Options, taken out of argv before Google Benchmark sees it:
 //   --bsp_scenes=a,b  --bsp_heuristics=a,b  --bsp_sizes=1000,10000
+//   --plugin=PATH.so (or --plugin PATH.so; repeatable): a plugin's heuristics, registered like
+//   built-ins (docs/plugins.md) and named in the output's context
 // Everything else goes to Google Benchmark (--benchmark_filter=REGEX selects by name,
 // --benchmark_min_time=S, ...). Without --benchmark_out the JSON goes to
 // results/runs/<binary>-<UTC time>.json in the source tree (git ignores results/runs/).
@@ -28,8 +30,9 @@ struct Selection {
   std::vector<std::uint64_t> sizes;
 };
 
-// Removes the --bsp_* options from argv; what they do not set comes from `defaults`, and empty
-// scene or heuristic lists become the whole catalog or registry. Throws UsageError on a bad value.
+// Removes the --bsp_* and --plugin options from argv and loads the plugins; what they do not set
+// comes from `defaults`, and empty scene or heuristic lists become the whole catalog or registry.
+// Throws UsageError on a bad value, InputError for a bad plugin.
 Selection take_selection(int& argc, char** argv, Selection defaults);
 
 // argv plus the default --benchmark_out (see above) when none is given; `binary` names the file.
@@ -61,7 +64,8 @@ inline double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Adds the git revision to the context and runs the benchmarks; returns main's exit code.
+// Adds the git revision to the context and runs the benchmarks; returns main's exit code: 2 for an
+// unrecognized argument, 3 when a plugin's code threw (one line naming it on stderr).
 int run_benchmarks(int argc, char** argv, const std::string& binary);
 
 }  // namespace bsp::bench
