@@ -7,11 +7,10 @@
 #include <cmath>
 #include <deque>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
 
 #include "common/errors.h"
-#include "common/hash.h"
+#include "experiments/scene_run.h"
 #include "search/tree_search.h"
 #include "split/plugin.h"
 
@@ -132,20 +131,6 @@ HeuristicInfo guarded(HeuristicInfo info, const std::string& plugin) {
   return info;
 }
 
-// Bytes read at a time when hashing a plugin's file.
-constexpr std::size_t kHashChunk = 1 << 16;
-
-std::string content_hash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("plugin " + path + ": cannot open the file");
-  Hasher h;
-  std::string chunk(kHashChunk, '\0');
-  while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
-    h.add_string(std::string_view(chunk.data(), static_cast<std::size_t>(in.gcount())));
-  if (in.bad()) throw InputError("plugin " + path + ": cannot read the file");
-  return h.hex();
-}
-
 // A symbol of the library, or InputError naming what is missing.
 void* entry(void* library, const char* symbol, const std::string& path) {
   void* f = dlsym(library, symbol);
@@ -176,7 +161,7 @@ const PluginIdentity& load_plugin(const std::string& given) {
   for (const auto& p : loaded())
     if (p.path == path) return p;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError("plugin " + given + ": no such file");
-  const std::string hash = content_hash(path);
+  const std::string hash = file_hash(path);
   // RTLD_LOCAL: the plugin's symbols (and the copy of bspbench it links) stay its own. The library
   // is never closed: its heuristics' code lives in it for the rest of the process.
   void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
